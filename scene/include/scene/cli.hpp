@@ -1,0 +1,19 @@
+#pragma once
+// Shared executable plumbing: Ctrl-C handling and the exit-code contract.
+#include <functional>
+#include <string>
+
+namespace scene {
+
+// SIGINT sets a flag that long loops poll; a second SIGINT aborts at once.
+void install_interrupt_handler();
+bool interrupted();
+void clear_interrupt();  // tests
+
+// Runs `body`, turning exceptions into one "PROGRAM: error: ..." line on
+// stderr and the contract's exit codes (InputError 2, RunError 1, other 1).
+int run_guarded(const std::string& program, const std::function<int()>& body);
+
+std::string version_string();
+
+}  // namespace scene

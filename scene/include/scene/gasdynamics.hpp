@@ -1,0 +1,30 @@
+#pragma once
+// Exact and correlated ideal-gas shock relations used as references
+// (docs/units.md). Angles in radians unless a name says _deg.
+#include <optional>
+
+namespace scene {
+
+// Weak-shock wave angle beta for deflection theta at Mach M (theta-beta-Mach
+// relation); nullopt when theta exceeds the maximum deflection (detached).
+std::optional<double> oblique_shock_beta(double mach, double theta, double gamma);
+double max_deflection(double mach, double gamma);
+// Static pressure ratio p2/p1 across an oblique shock of angle beta.
+double oblique_pressure_ratio(double mach, double beta, double gamma);
+// Density ratio rho2/rho1 across an oblique shock of angle beta.
+double oblique_density_ratio(double mach, double beta, double gamma);
+// Mach number behind an oblique shock of angle beta and deflection theta.
+double oblique_downstream_mach(double mach, double beta, double theta, double gamma);
+
+// Billig (1967) correlations, gamma = 1.4. Standoff over nose radius, and the
+// shock curvature radius over nose radius.
+double billig_standoff_cylinder(double mach);   // 0.386 exp(4.67/M^2)
+double billig_standoff_sphere(double mach);     // 0.143 exp(3.24/M^2)
+double billig_shock_radius_cylinder(double mach);  // 1.386 exp(1.8/(M-1)^0.75)
+// Billig's hyperbola: distance downstream of the shock vertex at height y,
+// for nose radius R. x = Rc cot^2(mu) [sqrt(1 + y^2 tan^2(mu)/Rc^2) - 1].
+double billig_shock_x(double mach, double radius, double y);
+// Inverse: height of the shock at distance x downstream of its vertex.
+double billig_shock_y(double mach, double radius, double x);
+
+}  // namespace scene

@@ -1,0 +1,34 @@
+#pragma once
+#include <cstdint>
+#include <optional>
+
+#include "scene/vec2.hpp"
+
+namespace scene {
+
+// `granular:` section. Lengths in particle diameters, masses in particle
+// masses, times in d / sqrt(T_inflow/m) unless stated (docs/units.md).
+struct GranularParams {
+  // Box scenes: exactly as ../shared/contract.md.
+  std::optional<std::int64_t> particles;
+  std::optional<double> packing_fraction;
+  double restitution = 1.0;            // disk-disk e, in (0, 1]
+  std::optional<double> restitution_wall;  // disk-wall/vertex e; default = restitution
+  std::uint64_t seed = 1;
+  std::optional<double> collisions;    // stop after this many collisions
+  std::optional<double> time;          // or after this simulated time
+  double tc = 1e-6;                    // TC model: collision within tc of the last is elastic
+  Vec2 gravity{0.0, 0.0};              // uniform force per unit mass
+  // Flow scenes.
+  std::optional<double> mach;          // overrides freestream.mach for the granular gas
+  double inflow_packing_fraction = 0.05;
+  double body_diameters = 120.0;       // body length in particle diameters
+  int lattice_nx = 200;
+  int lattice_ny = 200;
+  std::optional<double> warmup;        // flow-through times; unset: detect steady state
+  double averaging = 3.0;              // flow-through times averaged
+  int replicas = 2;                    // independent seeds (seed, seed+1, ...)
+  bool snapshots = false;              // write particle snapshots
+};
+
+}  // namespace scene

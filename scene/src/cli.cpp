@@ -1,0 +1,46 @@
+#include "scene/cli.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+
+#include "scene/errors.hpp"
+#include "version.hpp"
+
+namespace scene {
+
+namespace {
+// A signal handler can only reach process-wide state: this flag is the one
+// deliberate global of the project.
+volatile std::sig_atomic_t g_interrupts = 0;
+
+extern "C" void on_sigint(int) {
+  g_interrupts = g_interrupts + 1;
+  if (g_interrupts >= 2) std::_Exit(130);  // second Ctrl-C: stop now
+}
+}  // namespace
+
+void install_interrupt_handler() { std::signal(SIGINT, on_sigint); std::signal(SIGTERM, on_sigint); }
+bool interrupted() { return g_interrupts != 0; }
+void clear_interrupt() { g_interrupts = 0; }
+
+int run_guarded(const std::string& program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 2;
+  } catch (const RunError& e) {
+    std::fprintf(stderr, "%s: run failed: %s\n", program.c_str(), e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: run failed: %s\n", program.c_str(), e.what());
+    return 1;
+  }
+}
+
+std::string version_string() { return kVersion; }
+
+}  // namespace scene

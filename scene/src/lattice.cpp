@@ -1,0 +1,109 @@
+#include "scene/lattice.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <regex>
+#include <sstream>
+
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+
+namespace scene {
+
+Lattice::Lattice(int nx_, int ny_, double x0_, double y0_, double dx_, double dy_)
+    : nx(nx_), ny(ny_), x0(x0_), y0(y0_), dx(dx_), dy(dy_) {}
+
+std::vector<double>& Lattice::add(const std::string& name, double value) {
+  auto& f = fields[name];
+  f.assign(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), value);
+  return f;
+}
+
+const std::vector<double>& Lattice::field(const std::string& name) const {
+  const auto it = fields.find(name);
+  if (it == fields.end()) {
+    std::string have;
+    for (const auto& [k, v] : fields) have += (have.empty() ? "" : ", ") + k;
+    throw InputError("lattice has no field '" + name + "' (has: " + have + ")");
+  }
+  return it->second;
+}
+
+bool Lattice::sample(const std::string& name, double x, double y, double& out) const {
+  const auto& f = field(name);
+  const double fx = (x - x0) / dx - 0.5, fy = (y - y0) / dy - 0.5;
+  // Within half a cell of the outer edge, clamp to the outermost centres.
+  const double cx = std::clamp(fx, 0.0, static_cast<double>(nx - 1));
+  const double cy = std::clamp(fy, 0.0, static_cast<double>(ny - 1));
+  if (fx < -0.5 || fy < -0.5 || fx > nx - 0.5 || fy > ny - 0.5) return false;
+  const int i = std::min(static_cast<int>(cx), nx - 2 < 0 ? 0 : nx - 2);
+  const int j = std::min(static_cast<int>(cy), ny - 2 < 0 ? 0 : ny - 2);
+  const double tx = nx > 1 ? cx - i : 0.0, ty = ny > 1 ? cy - j : 0.0;
+  const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
+  const double a = f[index(i, j)], b = f[index(i1, j)], c = f[index(i, j1)], d = f[index(i1, j1)];
+  if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d)) return false;
+  out = (1 - tx) * (1 - ty) * a + tx * (1 - ty) * b + (1 - tx) * ty * c + tx * ty * d;
+  return true;
+}
+
+void write_vti(const Lattice& lat, const std::string& path) {
+  write_stream_atomic(path, [&](std::ostream& os) {
+    os << std::setprecision(10);
+    os << "<?xml version=\"1.0\"?>\n"
+       << "<VTKFile type=\"ImageData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       << "  <ImageData WholeExtent=\"0 " << lat.nx << " 0 " << lat.ny << " 0 0\" Origin=\""
+       << lat.x0 << " " << lat.y0 << " 0\" Spacing=\"" << lat.dx << " " << lat.dy << " 1\">\n"
+       << "    <Piece Extent=\"0 " << lat.nx << " 0 " << lat.ny << " 0 0\">\n"
+       << "      <CellData>\n";
+    for (const auto& [name, f] : lat.fields) {
+      os << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+      for (std::size_t k = 0; k < f.size(); ++k) {
+        // NaN marks "no data" (inside the body); VTK reads "nan".
+        if (std::isfinite(f[k])) os << f[k]; else os << "nan";
+        os << ((k + 1) % 10 == 0 ? '\n' : ' ');
+      }
+      os << "\n        </DataArray>\n";
+    }
+    os << "      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n";
+  });
+}
+
+Lattice read_vti(const std::string& path) {
+  const std::string text = read_file(path);
+  auto bad = [&](const std::string& what) -> InputError {
+    return InputError(path + ": not a lattice .vti file: " + what);
+  };
+  if (text.empty()) throw bad("file is empty");
+  const std::regex image(
+      R"(<ImageData\s+WholeExtent=\"0 (\d+) 0 (\d+) 0 0\"\s+Origin=\"([^ ]+) ([^ ]+) [^\"]+\"\s+Spacing=\"([^ ]+) ([^ ]+) [^\"]+\")");
+  std::smatch m;
+  if (!std::regex_search(text, m, image)) throw bad("no <ImageData WholeExtent/Origin/Spacing> header");
+  Lattice lat(std::stoi(m[1]), std::stoi(m[2]), std::stod(m[3]), std::stod(m[4]), std::stod(m[5]),
+              std::stod(m[6]));
+  if (lat.nx < 1 || lat.ny < 1) throw bad("empty extent");
+  const std::size_t n = static_cast<std::size_t>(lat.nx) * static_cast<std::size_t>(lat.ny);
+  const std::regex array(R"(<DataArray[^>]*Name=\"([^\"]+)\"[^>]*>([^<]*)</DataArray>)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), array); it != std::sregex_iterator(); ++it) {
+    const std::string name = (*it)[1];
+    std::istringstream is((*it)[2].str());
+    std::vector<double> v;
+    v.reserve(n);
+    std::string tok;
+    while (is >> tok) {
+      if (tok == "nan" || tok == "NaN" || tok == "-nan") { v.push_back(std::numeric_limits<double>::quiet_NaN()); continue; }
+      try {
+        v.push_back(std::stod(tok));
+      } catch (...) {
+        throw bad("field '" + name + "': '" + tok + "' is not a number");
+      }
+    }
+    if (v.size() != n)
+      throw bad("field '" + name + "' has " + std::to_string(v.size()) + " values, expected " + std::to_string(n));
+    lat.fields[name] = std::move(v);
+  }
+  if (lat.fields.empty()) throw bad("no DataArray fields");
+  return lat;
+}
+
+}  // namespace scene

@@ -1,0 +1,29 @@
+#include "params_parse.hpp"
+
+namespace scene {
+
+CfdParams parse_cfd(Section& s) {
+  CfdParams p;
+  p.max_co = s.number("max_co", p.max_co, {0.0, 5.0, true, false});
+  p.end_time = s.number("end_time", p.end_time, positive());
+  p.write_interval = s.number("write_interval", p.write_interval, positive());
+  p.steady_tol = s.number("steady_tol", p.steady_tol, positive());
+  p.force_tol = s.number("force_tol", p.force_tol, positive());
+  p.local_time_stepping = s.boolean("local_time_stepping", p.local_time_stepping);
+  p.np = static_cast<int>(s.integer("np", p.np, 1, 4096));
+  return p;
+}
+
+void emit_cfd(YAML::Emitter& e, const CfdParams& p) {
+  e << YAML::BeginMap;
+  emit_kv(e, "max_co", p.max_co);
+  emit_kv(e, "end_time", p.end_time);
+  emit_kv(e, "write_interval", p.write_interval);
+  emit_kv(e, "steady_tol", p.steady_tol);
+  emit_kv(e, "force_tol", p.force_tol);
+  emit_kv(e, "local_time_stepping", p.local_time_stepping);
+  emit_kv(e, "np", p.np);
+  e << YAML::EndMap;
+}
+
+}  // namespace scene

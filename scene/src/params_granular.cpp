@@ -1,0 +1,55 @@
+#include "params_parse.hpp"
+
+#include <limits>
+
+namespace scene {
+
+GranularParams parse_granular(Section& s) {
+  GranularParams p;
+  constexpr auto kMaxI = std::numeric_limits<std::int64_t>::max();
+  p.particles = s.opt_integer("particles", 1, kMaxI);
+  p.packing_fraction = s.opt_number("packing_fraction", {0.0, 0.9069, true, false});
+  p.restitution = s.number("restitution", p.restitution, {0.0, 1.0, true, false});
+  p.restitution_wall = s.opt_number("restitution_wall", {0.0, 1.0, true, false});
+  p.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, kMaxI));
+  p.collisions = s.opt_number("collisions", positive());
+  p.time = s.opt_number("time", positive());
+  p.tc = s.number("tc", p.tc, non_negative());
+  p.gravity = s.vec2("gravity", p.gravity);
+  p.mach = s.opt_number("mach", positive());
+  p.inflow_packing_fraction =
+      s.number("inflow_packing_fraction", p.inflow_packing_fraction, {0.0, 0.6, true, false});
+  p.body_diameters = s.number("body_diameters", p.body_diameters, {2.0, 1e5, false, false});
+  p.lattice_nx = static_cast<int>(s.integer("lattice_nx", p.lattice_nx, 2, 100000));
+  p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
+  p.warmup = s.opt_number("warmup", non_negative());
+  p.averaging = s.number("averaging", p.averaging, positive());
+  p.replicas = static_cast<int>(s.integer("replicas", p.replicas, 1, 10000));
+  p.snapshots = s.boolean("snapshots", p.snapshots);
+  return p;
+}
+
+void emit_granular(YAML::Emitter& e, const GranularParams& p) {
+  e << YAML::BeginMap;
+  emit_opt(e, "particles", p.particles);
+  emit_opt(e, "packing_fraction", p.packing_fraction);
+  emit_kv(e, "restitution", p.restitution);
+  emit_opt(e, "restitution_wall", p.restitution_wall);
+  emit_kv(e, "seed", p.seed);
+  emit_opt(e, "collisions", p.collisions);
+  emit_opt(e, "time", p.time);
+  emit_kv(e, "tc", p.tc);
+  emit_vec2(e, "gravity", p.gravity);
+  emit_opt(e, "mach", p.mach);
+  emit_kv(e, "inflow_packing_fraction", p.inflow_packing_fraction);
+  emit_kv(e, "body_diameters", p.body_diameters);
+  emit_kv(e, "lattice_nx", p.lattice_nx);
+  emit_kv(e, "lattice_ny", p.lattice_ny);
+  emit_opt(e, "warmup", p.warmup);
+  emit_kv(e, "averaging", p.averaging);
+  emit_kv(e, "replicas", p.replicas);
+  emit_kv(e, "snapshots", p.snapshots);
+  e << YAML::EndMap;
+}
+
+}  // namespace scene

@@ -1,0 +1,28 @@
+#include "params_parse.hpp"
+
+namespace scene {
+
+MeshParams parse_mesh(Section& s) {
+  MeshParams p;
+  p.h_min = s.number("h_min", p.h_min, positive());
+  p.h_max = s.number("h_max", p.h_max, positive());
+  p.band_width = s.opt_number("band_width", positive());
+  p.growth = s.number("growth", p.growth, {1.0, 10.0, true, false});
+  p.target_cells = s.opt_number("target_cells", {10.0, 1e9, false, false});
+  p.recombine = s.boolean("recombine", p.recombine);
+  if (p.h_min > p.h_max) s.fail("h_min", "must not exceed h_max");
+  return p;
+}
+
+void emit_mesh(YAML::Emitter& e, const MeshParams& p) {
+  e << YAML::BeginMap;
+  emit_kv(e, "h_min", p.h_min);
+  emit_kv(e, "h_max", p.h_max);
+  emit_opt(e, "band_width", p.band_width);
+  emit_kv(e, "growth", p.growth);
+  emit_opt(e, "target_cells", p.target_cells);
+  emit_kv(e, "recombine", p.recombine);
+  e << YAML::EndMap;
+}
+
+}  // namespace scene

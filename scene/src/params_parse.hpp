@@ -1,0 +1,35 @@
+#pragma once
+// Per-stage section parsers and emitters (private). Each stage's owner keeps
+// its own params_<stage>.cpp.
+#include <yaml-cpp/yaml.h>
+
+#include "scene/stage_params.hpp"
+#include "section.hpp"
+
+namespace scene {
+
+GranularParams parse_granular(Section& s);
+ShockfitParams parse_shockfit(Section& s);
+MeshParams parse_mesh(Section& s);
+CfdParams parse_cfd(Section& s);
+
+void emit_granular(YAML::Emitter& e, const GranularParams& p);
+void emit_shockfit(YAML::Emitter& e, const ShockfitParams& p);
+void emit_mesh(YAML::Emitter& e, const MeshParams& p);
+void emit_cfd(YAML::Emitter& e, const CfdParams& p);
+
+// Helpers for emitters.
+template <class T>
+void emit_kv(YAML::Emitter& e, const char* k, const T& v) {
+  e << YAML::Key << k << YAML::Value << v;
+}
+template <class T>
+void emit_opt(YAML::Emitter& e, const char* k, const std::optional<T>& v) {
+  e << YAML::Key << k << YAML::Value;
+  if (v) e << *v; else e << YAML::Null;
+}
+inline void emit_vec2(YAML::Emitter& e, const char* k, Vec2 v) {
+  e << YAML::Key << k << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x << v.y << YAML::EndSeq;
+}
+
+}  // namespace scene

@@ -1,0 +1,335 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "params_parse.hpp"
+#include "scene/body.hpp"
+#include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
+#include "scene/io.hpp"
+
+namespace scene {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+// contract: box particles and packing_fraction must agree within 0.5%.
+constexpr double kPackingAgreement = 0.005;
+// Disk area in units of the diameter squared.
+constexpr double kDiskArea = std::numbers::pi / 4.0;
+
+BodySpec parse_body(Section& s) {
+  BodySpec b;
+  const std::string kind = s.string("kind", "", {"wedge", "disc", "apollo", "polygon"});
+  if (kind.empty()) s.fail("kind", "required: one of wedge | disc | apollo | polygon");
+  b.curve_tolerance = s.number("curve_tolerance", b.curve_tolerance, {0.0, 0.1, true, false});
+  if (kind == "wedge") {
+    b.kind = BodyKind::wedge;
+    b.angle_deg = s.number("angle_deg", b.angle_deg, {0.0, 60.0, true, true});
+    b.length = s.number("length", b.length, positive());
+  } else if (kind == "disc") {
+    b.kind = BodyKind::disc;
+    b.radius = s.number("radius", b.radius, positive());
+  } else if (kind == "apollo") {
+    b.kind = BodyKind::apollo;
+    b.diameter = s.number("diameter", b.diameter, positive());
+  } else {
+    b.kind = BodyKind::polygon;
+    b.points = s.points("points");
+  }
+  s.finish();
+  if (b.kind == BodyKind::polygon) {
+    try {
+      b.points = validated_polygon(b.points);
+    } catch (const InputError& e) {
+      s.fail("points", e.what());
+    }
+  }
+  return b;
+}
+
+Domain parse_domain(Section& s) {
+  Domain d;
+  for (const char* k : {"xmin", "xmax", "ymin", "ymax"})
+    if (!s.has(k)) s.fail(k, "required in a domain: section (xmin, xmax, ymin, ymax)");
+  d.xmin = s.number("xmin", 0);
+  d.xmax = s.number("xmax", 0);
+  d.ymin = s.number("ymin", 0);
+  d.ymax = s.number("ymax", 0);
+  d.symmetric = s.boolean("symmetric", false);
+  s.finish();
+  if (!(d.xmax > d.xmin)) s.fail("xmax", "must exceed xmin");
+  if (!(d.ymax > d.ymin)) s.fail("ymax", "must exceed ymin");
+  if (d.symmetric && d.ymin != 0.0) s.fail("ymin", "must be 0 for a symmetric domain");
+  return d;
+}
+
+Box parse_box(Section& s) {
+  Box b;
+  b.width = s.number("width", b.width, positive());
+  b.height = s.number("height", b.height, positive());
+  b.periodic = s.boolean("periodic", b.periodic);
+  s.finish();
+  return b;
+}
+
+void resolve_box_particles(Scene& sc, Section& gran) {
+  auto& g = sc.granular;
+  const double area = sc.box->width * sc.box->height;
+  if (g.particles && g.packing_fraction) {
+    const double nu = static_cast<double>(*g.particles) * kDiskArea / area;
+    if (std::abs(nu - *g.packing_fraction) > kPackingAgreement * *g.packing_fraction)
+      gran.fail("packing_fraction",
+                "particles " + std::to_string(*g.particles) + " give packing fraction " +
+                    std::to_string(nu) + ", which disagrees with packing_fraction " +
+                    std::to_string(*g.packing_fraction) + " by more than 0.5%");
+  } else if (g.packing_fraction) {
+    g.particles = static_cast<std::int64_t>(std::llround(*g.packing_fraction * area / kDiskArea));
+  } else if (g.particles) {
+    g.packing_fraction = static_cast<double>(*g.particles) * kDiskArea / area;
+  } else {
+    gran.fail("particles", "a box scene needs particles or packing_fraction");
+  }
+}
+
+Scene parse_root(const YAML::Node& root, const std::string& origin) {
+  Section top(root, origin, "");
+  if (!root || !root.IsMap()) throw InputError(origin + ": expected a YAML mapping at the top level");
+  Scene sc;
+  sc.source_file = origin;
+  const auto schema = top.opt_integer("schema", 1, 1000);
+  if (schema && *schema != kSchemaVersion)
+    top.fail("schema", "this build reads schema " + std::to_string(kSchemaVersion) + ", got " +
+                           std::to_string(*schema));
+  sc.name = top.string("name", std::filesystem::path(origin).stem().string());
+  const bool has_body = top.has("body"), has_box = top.has("box");
+  {
+    Section s = top.child("body");
+    if (has_body) sc.body = parse_body(s);
+  }
+  {
+    Section s = top.child("box");
+    if (has_box) sc.box = parse_box(s);
+  }
+  if (has_body && has_box) top.fail("box", "a scene has either a body or a box, not both");
+  if (!has_body && !has_box) top.fail("body", "required: a body (or a box for validation scenes)");
+  {
+    Section s = top.child("freestream");
+    if (has_body && !s.has("mach")) top.fail("freestream", "required: freestream.mach");
+    sc.freestream.mach = s.number("mach", sc.freestream.mach, positive());
+    sc.freestream.gamma = s.number("gamma", sc.freestream.gamma, {1.0, 5.0 / 3.0, true, false});
+    s.finish();
+  }
+  {
+    Section s = top.child("domain");
+    if (top.has("domain")) sc.domain_override = parse_domain(s);
+  }
+  Section gran = top.child("granular");
+  sc.granular = parse_granular(gran);
+  gran.finish();
+  if (sc.box) resolve_box_particles(sc, gran);
+  {
+    Section s = top.child("shockfit");
+    sc.shockfit = parse_shockfit(s);
+    s.finish();
+  }
+  {
+    Section s = top.child("mesh");
+    sc.mesh = parse_mesh(s);
+    s.finish();
+  }
+  {
+    Section s = top.child("cfd");
+    sc.cfd = parse_cfd(s);
+    s.finish();
+  }
+  top.finish();
+  if (sc.body) {
+    const BodyGeometry g = make_body(*sc.body);  // validates geometry early
+    (void)g;
+    (void)scene_domain(sc);  // validates an override against the body
+  }
+  return sc;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& yaml_text, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(origin + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+  return parse_root(root, origin);
+}
+
+Scene load_scene(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path + ": scene file not found");
+  return parse_scene(read_file(path), path);
+}
+
+double body_length(const BodySpec& b) {
+  switch (b.kind) {
+    case BodyKind::wedge: return b.length;
+    case BodyKind::disc: return b.radius;
+    case BodyKind::apollo: return b.diameter;
+    case BodyKind::polygon: {
+      const auto [lo, hi] = std::minmax_element(b.points.begin(), b.points.end(),
+                                                [](Vec2 a, Vec2 c) { return a.x < c.x; });
+      return hi->x - lo->x;
+    }
+  }
+  return 1.0;
+}
+
+namespace {
+
+struct Bbox {
+  double xmin, xmax, ymin, ymax;
+};
+Bbox bbox(const std::vector<Vec2>& p) {
+  Bbox b{p[0].x, p[0].x, p[0].y, p[0].y};
+  for (const Vec2 q : p) {
+    b.xmin = std::min(b.xmin, q.x);
+    b.xmax = std::max(b.xmax, q.x);
+    b.ymin = std::min(b.ymin, q.y);
+    b.ymax = std::max(b.ymax, q.y);
+  }
+  return b;
+}
+
+// Domain for a blunt body of half-height h whose front is at x = xfront, using
+// Billig's cylinder correlation with nose radius h as the shock estimate.
+Domain blunt_domain(double mach, double xfront, double xback, double h, bool symmetric) {
+  const double m = std::max(mach, 1.2);
+  const double standoff = billig_standoff_cylinder(m) * h;
+  Domain d;
+  // Upstream: room for the standoff plus a margin of free stream, so the
+  // inflow boundary never touches the shock (granular shocks sit further out).
+  d.xmin = xfront - std::max(2.5 * standoff, 0.6 * h);
+  d.xmax = xback;
+  const double shock_h = billig_shock_y(m, h, d.xmax - (xfront - standoff));
+  d.ymax = std::max(1.25 * shock_h, 2.0 * h);
+  d.ymin = symmetric ? 0.0 : -d.ymax;
+  d.symmetric = symmetric;
+  return d;
+}
+
+}  // namespace
+
+Domain scene_domain(const Scene& s) {
+  if (!s.body) throw InputError(s.source_file + ": scene has no body, so no flow domain");
+  const BodyGeometry g = make_body(*s.body);
+  const Bbox bb = bbox(g.polyline);
+  const double mach = s.freestream.mach;
+  Domain d;
+  if (s.domain_override) {
+    d = *s.domain_override;
+  } else if (s.body->kind == BodyKind::wedge) {
+    const double th = s.body->angle_deg * kDeg;
+    const double xe = s.body->length * std::cos(th), ye = s.body->length * std::sin(th);
+    const auto beta = oblique_shock_beta(mach, th, s.freestream.gamma);
+    if (beta) {
+      // Attached: the shock leaves through the top no later than x = xe; keep
+      // 10 deg of slack for granular shocks, which stand at larger angles.
+      d.xmin = -0.2 * s.body->length;
+      d.xmax = xe;
+      d.ymin = 0.0;
+      d.ymax = std::max(xe * std::tan(std::min(*beta + 10 * kDeg, 80 * kDeg)), 1.5 * ye);
+      d.symmetric = true;
+    } else {
+      d = blunt_domain(mach, 0.0, xe, ye, true);
+    }
+  } else {
+    const double h = g.symmetric ? bb.ymax : 0.5 * (bb.ymax - bb.ymin);
+    d = blunt_domain(mach, bb.xmin, bb.xmax, h, g.symmetric);
+    if (!g.symmetric) {
+      const double yc = 0.5 * (bb.ymax + bb.ymin);
+      d.ymin += yc;
+      d.ymax += yc;
+    }
+  }
+  // The body may run out through the outflow boundary (the domain cuts it
+  // there), but must clear the inflow boundary and the sides.
+  const std::string where = s.source_file + ": domain: ";
+  if (!(bb.xmin > d.xmin)) throw InputError(where + "the body touches or crosses the inflow boundary x = xmin");
+  if (!(bb.xmin < d.xmax)) throw InputError(where + "the body lies downstream of the outflow boundary x = xmax");
+  if (!(bb.ymax < d.ymax)) throw InputError(where + "the body touches or crosses the side boundary y = ymax");
+  if (!d.symmetric && !(bb.ymin > d.ymin))
+    throw InputError(where + "the body touches or crosses the side boundary y = ymin");
+  if (d.symmetric && !g.symmetric)
+    throw InputError(where + "symmetric domain, but the body is not symmetric about y = 0");
+  return d;
+}
+
+std::string to_yaml(const Scene& s) {
+  YAML::Emitter e;
+  e << YAML::BeginMap;
+  emit_kv(e, "schema", kSchemaVersion);
+  emit_kv(e, "name", s.name);
+  if (s.body) {
+    const BodySpec& b = *s.body;
+    e << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
+    switch (b.kind) {
+      case BodyKind::wedge:
+        emit_kv(e, "kind", "wedge");
+        emit_kv(e, "angle_deg", b.angle_deg);
+        emit_kv(e, "length", b.length);
+        break;
+      case BodyKind::disc:
+        emit_kv(e, "kind", "disc");
+        emit_kv(e, "radius", b.radius);
+        break;
+      case BodyKind::apollo:
+        emit_kv(e, "kind", "apollo");
+        emit_kv(e, "diameter", b.diameter);
+        break;
+      case BodyKind::polygon:
+        emit_kv(e, "kind", "polygon");
+        e << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (const Vec2 p : b.points) e << YAML::Flow << YAML::BeginSeq << p.x << p.y << YAML::EndSeq;
+        e << YAML::EndSeq;
+        break;
+    }
+    emit_kv(e, "curve_tolerance", b.curve_tolerance);
+    e << YAML::EndMap;
+  }
+  if (s.box) {
+    e << YAML::Key << "box" << YAML::Value << YAML::BeginMap;
+    emit_kv(e, "width", s.box->width);
+    emit_kv(e, "height", s.box->height);
+    emit_kv(e, "periodic", s.box->periodic);
+    e << YAML::EndMap;
+  }
+  e << YAML::Key << "freestream" << YAML::Value << YAML::BeginMap;
+  emit_kv(e, "mach", s.freestream.mach);
+  emit_kv(e, "gamma", s.freestream.gamma);
+  e << YAML::EndMap;
+  if (s.body) {
+    const Domain d = scene_domain(s);
+    e << YAML::Key << "domain" << YAML::Value << YAML::BeginMap;
+    emit_kv(e, "xmin", d.xmin);
+    emit_kv(e, "xmax", d.xmax);
+    emit_kv(e, "ymin", d.ymin);
+    emit_kv(e, "ymax", d.ymax);
+    emit_kv(e, "symmetric", d.symmetric);
+    e << YAML::EndMap;
+  }
+  e << YAML::Key << "granular" << YAML::Value;
+  emit_granular(e, s.granular);
+  e << YAML::Key << "shockfit" << YAML::Value;
+  emit_shockfit(e, s.shockfit);
+  e << YAML::Key << "mesh" << YAML::Value;
+  emit_mesh(e, s.mesh);
+  e << YAML::Key << "cfd" << YAML::Value;
+  emit_cfd(e, s.cfd);
+  e << YAML::EndMap;
+  return std::string(e.c_str()) + "\n";
+}
+
+}  // namespace scene

@@ -214,7 +214,7 @@ Domain blunt_domain(double mach, double xfront, double xback, double h, bool sym
   d.xmin = xfront - std::max(2.5 * standoff, 0.6 * h);
   d.xmax = xback;
   const double shock_h = billig_shock_y(m, h, d.xmax - (xfront - standoff));
-  d.ymax = std::max(1.25 * shock_h, 2.0 * h);
+  d.ymax = std::max(1.1 * shock_h, 2.0 * h);
   d.ymin = symmetric ? 0.0 : -d.ymax;
   d.symmetric = symmetric;
   return d;

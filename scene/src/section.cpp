@@ -68,6 +68,8 @@ YAML::Node Section::get(const std::string& key) {
   return n;
 }
 
+static bool absent(const YAML::Node& n) { return !n.IsDefined() || n.IsNull(); }
+
 static std::string scalar_text(const YAML::Node& n) {
   if (n.IsScalar()) return "'" + n.Scalar() + "'";
   if (n.IsSequence()) return "a list";
@@ -77,7 +79,7 @@ static std::string scalar_text(const YAML::Node& n) {
 
 std::optional<double> Section::opt_number(const std::string& key, const Range& r) {
   const YAML::Node n = get(key);
-  if (!n) return std::nullopt;
+  if (absent(n)) return std::nullopt;
   double v = 0;
   if (!n.IsScalar() || !YAML::convert<double>::decode(n, v))
     fail_node(n, key, "expected " + r.describe() + ", got " + scalar_text(n));
@@ -92,7 +94,7 @@ double Section::number(const std::string& key, double def, const Range& r) {
 std::optional<std::int64_t> Section::opt_integer(const std::string& key, std::int64_t lo,
                                                  std::int64_t hi) {
   const YAML::Node n = get(key);
-  if (!n) return std::nullopt;
+  if (absent(n)) return std::nullopt;
   const std::string want =
       "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   double d = 0;
@@ -110,7 +112,7 @@ std::int64_t Section::integer(const std::string& key, std::int64_t def, std::int
 
 bool Section::boolean(const std::string& key, bool def) {
   const YAML::Node n = get(key);
-  if (!n) return def;
+  if (absent(n)) return def;
   bool b = false;
   if (!n.IsScalar() || !YAML::convert<bool>::decode(n, b))
     fail_node(n, key, "expected true or false, got " + scalar_text(n));
@@ -120,7 +122,7 @@ bool Section::boolean(const std::string& key, bool def) {
 std::optional<std::string> Section::opt_string(const std::string& key,
                                                const std::vector<std::string>& allowed) {
   const YAML::Node n = get(key);
-  if (!n) return std::nullopt;
+  if (absent(n)) return std::nullopt;
   if (!n.IsScalar()) fail_node(n, key, "expected a string, got " + scalar_text(n));
   const std::string v = n.Scalar();
   if (!allowed.empty()) {
@@ -148,7 +150,7 @@ static bool decode_point(const YAML::Node& n, Vec2& p) {
 
 Vec2 Section::vec2(const std::string& key, Vec2 def) {
   const YAML::Node n = get(key);
-  if (!n) return def;
+  if (absent(n)) return def;
   Vec2 p;
   if (!decode_point(n, p)) fail_node(n, key, "expected [x, y] with two finite numbers");
   return p;
@@ -156,7 +158,7 @@ Vec2 Section::vec2(const std::string& key, Vec2 def) {
 
 std::vector<Vec2> Section::points(const std::string& key) {
   const YAML::Node n = get(key);
-  if (!n) fail(key, "required: a list of [x, y] points");
+  if (absent(n)) fail(key, "required: a list of [x, y] points");
   if (!n.IsSequence()) fail_node(n, key, "expected a list of [x, y] points, got " + scalar_text(n));
   std::vector<Vec2> out;
   for (std::size_t i = 0; i < n.size(); ++i) {
@@ -170,8 +172,8 @@ std::vector<Vec2> Section::points(const std::string& key) {
 
 Section Section::child(const std::string& key) {
   const YAML::Node n = get(key);
-  if (n && !n.IsMap()) fail_node(n, key, "expected a mapping, got " + scalar_text(n));
-  return Section(n ? n : YAML::Node(), file_, full_key(key));
+  if (!absent(n) && !n.IsMap()) fail_node(n, key, "expected a mapping, got " + scalar_text(n));
+  return Section(absent(n) ? YAML::Node() : n, file_, full_key(key));
 }
 
 void Section::finish() const {

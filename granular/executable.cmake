@@ -1,0 +1,1 @@
+# The `granular` executable (owned by the flow work).

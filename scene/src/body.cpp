@@ -120,6 +120,10 @@ std::vector<Vec2> validated_polygon(const std::vector<Vec2>& raw) {
       throw InputError("zero-length edge " + std::to_string(i) + " at " + pt(a));
   }
   Polygon poly = to_cgal(pts);
+  // Zero area first: CGAL calls a collinear polygon non-simple, which would
+  // hide the more useful message.
+  if (std::abs(CGAL::to_double(poly.area())) <= kZeroEdge * std::max(scale * scale, 1.0))
+    throw InputError("polygon has zero area");
   if (!poly.is_simple()) {
     // Name the first pair of crossing edges for the user.
     const std::size_t n = pts.size();

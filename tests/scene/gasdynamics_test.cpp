@@ -1,0 +1,44 @@
+// Reference gas dynamics against tabulated values (NACA 1135 / the figures).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "scene/gasdynamics.hpp"
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kAngleTolDeg = 0.005;  // tables give 2 decimals
+constexpr double kRatioTol = 0.0015;
+}  // namespace
+
+TEST(Gasdynamics, ThetaBetaMachCaseStudies) {
+  struct Case { double m, theta, beta, p; };
+  for (const Case c : {Case{3, 10, 27.38, 2.054}, Case{4, 15, 27.06, 3.697}, Case{5, 20, 29.80, 7.037}}) {
+    const auto b = scene::oblique_shock_beta(c.m, c.theta * kDeg, 1.4);
+    ASSERT_TRUE(b.has_value());
+    EXPECT_NEAR(*b / kDeg, c.beta, kAngleTolDeg + 0.005);
+    EXPECT_NEAR(scene::oblique_pressure_ratio(c.m, *b, 1.4), c.p, kRatioTol);
+  }
+}
+
+TEST(Gasdynamics, DetachedBeyondMaximumDeflection) {
+  // M = 3, gamma 1.4: maximum deflection 34.07 deg.
+  EXPECT_NEAR(scene::max_deflection(3.0, 1.4) / kDeg, 34.07, 0.01);
+  EXPECT_FALSE(scene::oblique_shock_beta(3.0, 35 * kDeg, 1.4).has_value());
+  EXPECT_FALSE(scene::oblique_shock_beta(0.8, 5 * kDeg, 1.4).has_value());
+}
+
+TEST(Gasdynamics, NormalShockLimit) {
+  // beta = 90 deg is the normal shock: M=2 gives p2/p1 = 4.5, rho2/rho1 = 2.667.
+  EXPECT_NEAR(scene::oblique_pressure_ratio(2.0, std::numbers::pi / 2, 1.4), 4.5, 1e-12);
+  EXPECT_NEAR(scene::oblique_density_ratio(2.0, std::numbers::pi / 2, 1.4), 8.0 / 3.0, 1e-12);
+}
+
+TEST(Gasdynamics, BilligCorrelations) {
+  EXPECT_NEAR(scene::billig_standoff_cylinder(4.0), 0.386 * std::exp(4.67 / 16.0), 1e-12);
+  // The hyperbola passes through its vertex and inverts exactly.
+  EXPECT_DOUBLE_EQ(scene::billig_shock_x(4.0, 1.0, 0.0), 0.0);
+  const double y = 1.7;
+  EXPECT_NEAR(scene::billig_shock_y(4.0, 1.0, scene::billig_shock_x(4.0, 1.0, y)), y, 1e-9);
+}

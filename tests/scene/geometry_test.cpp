@@ -98,7 +98,9 @@ TEST(Geometry, ApolloDimensions) {
   EXPECT_DOUBLE_EQ(g.length, 2.0);
   // Heat shield: points near the nose lie on the sphere of radius 1.2 D about (1.2 D, 0).
   for (const Vec2 p : g.polyline) {
-    if (p.x < 0.05 && p.x > 0) EXPECT_NEAR(scene::norm(p - Vec2{2.4, 0}), 2.4, 1e-9);
+    if (p.x < 0.05 && p.x > 0) {
+      EXPECT_NEAR(scene::norm(p - Vec2{2.4, 0}), 2.4, 1e-9);
+    }
   }
   // Afterbody cone at 33 deg: the long straight upper edge.
   bool found_cone = false;

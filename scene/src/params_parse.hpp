@@ -12,11 +12,13 @@ GranularParams parse_granular(Section& s);
 ShockfitParams parse_shockfit(Section& s);
 MeshParams parse_mesh(Section& s);
 CfdParams parse_cfd(Section& s);
+PipelineParams parse_pipeline(Section& s);
 
 void emit_granular(YAML::Emitter& e, const GranularParams& p);
 void emit_shockfit(YAML::Emitter& e, const ShockfitParams& p);
 void emit_mesh(YAML::Emitter& e, const MeshParams& p);
 void emit_cfd(YAML::Emitter& e, const CfdParams& p);
+void emit_pipeline(YAML::Emitter& e, const PipelineParams& p);
 
 // Helpers for emitters.
 template <class T>

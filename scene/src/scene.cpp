@@ -146,6 +146,11 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     sc.cfd = parse_cfd(s);
     s.finish();
   }
+  {
+    Section s = top.child("pipeline");
+    sc.pipeline = parse_pipeline(s);
+    s.finish();
+  }
   top.finish();
   if (sc.body) {
     const BodyGeometry g = make_body(*sc.body);  // validates geometry early
@@ -328,8 +333,19 @@ std::string to_yaml(const Scene& s) {
   emit_mesh(e, s.mesh);
   e << YAML::Key << "cfd" << YAML::Value;
   emit_cfd(e, s.cfd);
+  e << YAML::Key << "pipeline" << YAML::Value;
+  emit_pipeline(e, s.pipeline);
   e << YAML::EndMap;
   return std::string(e.c_str()) + "\n";
+}
+
+std::string section_yaml(const Scene& s, const std::string& section) {
+  const YAML::Node root = YAML::Load(to_yaml(s));
+  const YAML::Node n = root[section];
+  if (!n.IsDefined() || n.IsNull()) return "";
+  YAML::Emitter e;
+  e << n;
+  return e.c_str();
 }
 
 }  // namespace scene

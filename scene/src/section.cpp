@@ -156,6 +156,22 @@ Vec2 Section::vec2(const std::string& key, Vec2 def) {
   return p;
 }
 
+std::vector<double> Section::numbers(const std::string& key, const std::vector<double>& def,
+                                     const Range& r) {
+  const YAML::Node n = get(key);
+  if (absent(n)) return def;
+  if (!n.IsSequence() || n.size() == 0)
+    fail_node(n, key, "expected a non-empty list of numbers, got " + scalar_text(n));
+  std::vector<double> out;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    double v = 0;
+    if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], v) || !r.contains(v))
+      fail_node(n[i], key, "item " + std::to_string(i) + ": expected " + r.describe());
+    out.push_back(v);
+  }
+  return out;
+}
+
 std::vector<Vec2> Section::points(const std::string& key) {
   const YAML::Node n = get(key);
   if (absent(n)) fail(key, "required: a list of [x, y] points");

@@ -41,6 +41,8 @@ class Section {
   std::optional<std::string> opt_string(const std::string& key,
                                         const std::vector<std::string>& allowed = {});
   Vec2 vec2(const std::string& key, Vec2 def);
+  std::vector<double> numbers(const std::string& key, const std::vector<double>& def,
+                              const Range& r = {});
   std::vector<Vec2> points(const std::string& key);  // required list of [x, y]
   // Sub-mapping (empty if absent; error if not a mapping).
   Section child(const std::string& key);

@@ -59,6 +59,7 @@ struct Scene {
   ShockfitParams shockfit;
   MeshParams mesh;
   CfdParams cfd;
+  PipelineParams pipeline;
 };
 
 // Parse a scene file. Throws InputError with "FILE:LINE: key 'k': ..." text.
@@ -75,5 +76,8 @@ Domain scene_domain(const Scene& s);
 
 // Resolved scene echoed as YAML (every default filled in), for logs and caches.
 std::string to_yaml(const Scene& s);
+// One top-level section of the resolved scene as YAML text ("" if absent):
+// what a stage's cache key hashes, so a change elsewhere does not rerun it.
+std::string section_yaml(const Scene& s, const std::string& section);
 
 }  // namespace scene

@@ -5,4 +5,5 @@
 #include "scene/params_cfd.hpp"
 #include "scene/params_granular.hpp"
 #include "scene/params_mesh.hpp"
+#include "scene/params_pipeline.hpp"
 #include "scene/params_shockfit.hpp"

@@ -1,0 +1,21 @@
+#include "params_parse.hpp"
+
+namespace scene {
+
+PipelineParams parse_pipeline(Section& s) {
+  PipelineParams p;
+  p.levels = s.numbers("levels", p.levels, {0.0, 1000.0, true, false});
+  p.calibration = s.string("calibration", p.calibration);
+  p.cfd = s.boolean("cfd", p.cfd);
+  return p;
+}
+
+void emit_pipeline(YAML::Emitter& e, const PipelineParams& p) {
+  e << YAML::BeginMap;
+  e << YAML::Key << "levels" << YAML::Value << YAML::Flow << p.levels;
+  emit_kv(e, "calibration", p.calibration);
+  emit_kv(e, "cfd", p.cfd);
+  e << YAML::EndMap;
+}
+
+}  // namespace scene

@@ -9,6 +9,7 @@ GranularParams parse_granular(Section& s) {
   constexpr auto kMaxI = std::numeric_limits<std::int64_t>::max();
   p.particles = s.opt_integer("particles", 1, kMaxI);
   p.packing_fraction = s.opt_number("packing_fraction", {0.0, 0.9069, true, false});
+  p.restitution_given = s.has("restitution");
   p.restitution = s.number("restitution", p.restitution, {0.0, 1.0, true, false});
   p.restitution_wall = s.opt_number("restitution_wall", {0.0, 1.0, true, false});
   p.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, kMaxI));

@@ -13,6 +13,7 @@ struct GranularParams {
   std::optional<std::int64_t> particles;
   std::optional<double> packing_fraction;
   double restitution = 1.0;            // disk-disk e, in (0, 1]
+  bool restitution_given = false;      // set in the file (else the pipeline may calibrate it)
   std::optional<double> restitution_wall;  // disk-wall/vertex e; default = restitution
   std::uint64_t seed = 1;
   std::optional<double> collisions;    // stop after this many collisions

@@ -1,0 +1,53 @@
+#pragma once
+// Speed against error: the clustered and uniform families of CFD runs, the
+// reference for the body, and the speedup at equal error.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pipeline {
+
+struct GridRun {
+  std::string family;        // clustered | uniform
+  double level = 1;          // h = level x h_min
+  long cells = 0;
+  double mesh_seconds = 0;
+  double cfd_wall_seconds = 0;
+  long steps = 0;
+  bool steady = false;
+  std::string shock;         // attached | detached | none
+  double value = 0;          // shock angle (deg) or standoff (body lengths)
+  double value_ci = 0;
+  double error = 0;          // |value - reference| (deg) or relative standoff error
+  double wall_pressure_ratio = 0;
+  double pressure_error = 0; // relative, wedges only (NaN otherwise)
+  nlohmann::json to_json() const;
+};
+
+struct Reference {
+  std::string quantity;      // shock_angle_deg | standoff
+  std::string source;        // theta-beta-Mach | Billig | finest uniform grid
+  double value = 0;
+  double pressure_ratio = 0; // wedges: oblique-shock p2/p1 (NaN otherwise)
+};
+
+struct Comparison {
+  std::vector<GridRun> clustered, uniform;  // coarse to fine
+  // Clustered headline run (the finest) and its uniform match: the coarsest
+  // uniform grid at least as accurate, else the finest uniform grid.
+  int clustered_pick = -1, uniform_pick = -1;
+  bool uniform_matches = false;
+  // CFD wall time of the uniform family interpolated (log-log) at the
+  // clustered pick's error, over the clustered pick's time. NaN when the
+  // uniform family never reaches that error (then `speedup_bound` holds the
+  // lower bound finest-uniform time / clustered time).
+  double speedup_cfd = 0, speedup_total = 0, speedup_bound = 0;
+};
+
+// Error measure of one run against the reference.
+void score(GridRun& r, const Reference& ref);
+Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
+                   double granular_seconds);
+
+}  // namespace pipeline

@@ -1,0 +1,102 @@
+// pipeline: one command from a body scene to the clustered-vs-uniform verdict.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "pipeline/run.hpp"
+#include "pipeline/studies.hpp"
+#include "scene/cli.hpp"
+#include "scene/errors.hpp"
+#include "scene/scene.hpp"
+
+int main(int argc, char** argv) {
+  scene::install_interrupt_handler();
+  return scene::run_guarded("pipeline", [&]() -> int {
+    CLI::App app{"pipeline: granular shock prediction -> clustered and uniform grids -> rhoCentralFoam -> report"};
+    app.set_version_flag("--version", scene::version_string());
+    app.require_subcommand(1);
+
+    auto* run = app.add_subcommand("run", "run every stage on one scene (cached; rerun resumes)");
+    std::string scene_path, out_dir, calibration;
+    int np = 1;
+    std::vector<std::string> force;
+    bool dry_run = false;
+    run->add_option("scene", scene_path, "scene YAML")->required();
+    run->add_option("--out", out_dir, "output directory")->required();
+    run->add_option("--np", np, "processes for granular replicas and OpenFOAM")->check(CLI::PositiveNumber);
+    run->add_option("--force", force, "rerun a stage: granular, shockfit, meshgen, cfd, all")
+        ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "report", "all"}));
+    run->add_option("--calibration", calibration, "restitution table (default: pipeline/calibration.yaml)");
+    run->add_flag("--dry-run", dry_run, "validate the scene, print it resolved, and stop");
+
+    auto* sweep = app.add_subcommand("sweep", "granular + shockfit over a parameter grid");
+    std::vector<std::string> vary;
+    int jobs = 1;
+    sweep->add_option("scene", scene_path, "scene YAML")->required();
+    sweep->add_option("--vary", vary, "KEY=v1,v2,... (repeatable; e.g. granular.restitution=0.8,0.9)")->required();
+    sweep->add_option("--out", out_dir, "output directory")->required();
+    sweep->add_option("--jobs", jobs, "cases at once (processes)")->check(CLI::PositiveNumber);
+    sweep->add_option("--np", np, "threads per case")->check(CLI::PositiveNumber);
+
+    auto* calib = app.add_subcommand("calibrate", "find e so that granular shock angles match ideal-gas angles");
+    pipeline::CalibrateOptions co;
+    bool no_verify = false;
+    calib->add_option("--scene", co.scenes, "wedge scenes (default: the wedge case studies)");
+    calib->add_option("--e", co.restitutions, "restitution values to sweep")->delimiter(',');
+    calib->add_option("--out", co.out_dir, "output directory")->required();
+    calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
+    calib->add_option("--np", co.np, "threads per run")->check(CLI::PositiveNumber);
+    calib->add_flag("--no-verify", no_verify, "skip the verification run at the calibrated e");
+
+    auto* studies = app.add_subcommand("studies", "regenerate the case studies and docs/case_studies.md");
+    pipeline::StudiesOptions so;
+    studies->add_option("--out", so.out_dir, "output directory")->required();
+    studies->add_option("--scene", so.scenes, "scenes (default: pipeline/cases/*.yaml)");
+    studies->add_option("--docs", so.docs_table, "summary table to write (default: docs/case_studies.md)");
+    studies->add_option("--np", so.np, "processes")->check(CLI::PositiveNumber);
+
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+      return app.exit(e);  // --help, --version
+    } catch (const CLI::ParseError& e) {
+      app.exit(e);
+      return 2;  // contract: bad usage is exit 2
+    }
+
+    if (run->parsed()) {
+      scene::Scene s = scene::load_scene(scene_path);
+      if (!s.body) throw scene::InputError(scene_path + ": the pipeline needs a body scene (this one has a box)");
+      if (dry_run) {
+        std::cout << scene::to_yaml(s);
+        return 0;
+      }
+      pipeline::RunOptions o;
+      o.out_dir = out_dir;
+      o.np = np;
+      o.force = {force.begin(), force.end()};
+      o.calibration_path = calibration;
+      const auto summary = pipeline::run_pipeline(s, o);
+      std::cout << summary.dump(2) << "\n";
+      return 0;
+    }
+    if (sweep->parsed()) {
+      std::vector<pipeline::Vary> v;
+      for (const auto& a : vary) v.push_back(pipeline::parse_vary(a));
+      pipeline::run_sweep(scene_path, v, {out_dir, jobs, np});
+      return 0;
+    }
+    if (calib->parsed()) {
+      co.verify = !no_verify;
+      const auto r = pipeline::run_calibration(co);
+      std::cout << r.dump(2) << "\n";
+      return 0;
+    }
+    if (studies->parsed()) {
+      pipeline::run_studies(so);
+      return 0;
+    }
+    return 2;
+  });
+}

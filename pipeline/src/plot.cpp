@@ -1,0 +1,66 @@
+#include "pipeline/plot.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene/progress.hpp"
+
+namespace pipeline {
+
+namespace fs = std::filesystem;
+
+bool run_gnuplot(const std::string& script, const std::string& work_dir) {
+  const std::string path = work_dir + "/.plot.gp";
+  {
+    std::ofstream os(path);
+    os << script;
+  }
+  const std::string cmd = "gnuplot '" + path + "' > '" + work_dir + "/.plot.log' 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    scene::log_line("pipeline: warning: gnuplot failed (see " + work_dir + "/.plot.log); figure skipped", true);
+    return false;
+  }
+  std::error_code ec;
+  fs::remove(path, ec);
+  return true;
+}
+
+bool plot_png(const PlotSpec& spec, const std::string& png_path) {
+  const fs::path png(png_path);
+  const std::string dir = png.has_parent_path() ? png.parent_path().string() : ".";
+  fs::create_directories(dir);
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size " << spec.width << "," << spec.height << " font 'DejaVu Sans,11'\n"
+     << "set output '" << png.filename().string() << ".tmp'\n"
+     << "set title \"" << spec.title << "\"\nset xlabel \"" << spec.xlabel << "\"\nset ylabel \""
+     << spec.ylabel << "\"\nset grid\nset key outside right\n";
+  if (spec.logx) gp << "set logscale x\n";
+  if (spec.logy) gp << "set logscale y\n";
+  for (const auto& e : spec.extra) gp << e << "\n";
+  std::ostringstream data;
+  gp << "plot ";
+  bool first = true;
+  for (std::size_t k = 0; k < spec.series.size(); ++k) {
+    const auto& s = spec.series[k];
+    if (s.x.empty()) continue;
+    gp << (first ? "" : ", ") << "$d" << k << " with " << s.style << " title \"" << s.title << "\"";
+    first = false;
+    data << "$d" << k << " << EOD\n";
+    for (std::size_t i = 0; i < s.x.size(); ++i) data << s.x[i] << " " << s.y[i] << "\n";
+    data << "EOD\n";
+  }
+  if (first) return false;  // nothing to plot
+  gp << "\nset output\n";
+  const std::string script = data.str() + gp.str();
+  // gnuplot writes relative to its working directory: run it in `dir`.
+  const std::string cwd_script = "cd '" + dir + "'\n" + script;
+  if (!run_gnuplot(cwd_script, dir)) return false;
+  std::error_code ec;
+  fs::rename(dir + "/" + png.filename().string() + ".tmp", png_path, ec);
+  return !ec;
+}
+
+}  // namespace pipeline

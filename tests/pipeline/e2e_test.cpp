@@ -1,0 +1,104 @@
+// End to end with the real executables, gmsh and OpenFOAM, on a small wedge.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "scene/io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kAngleTolDeg = 1.0;  // issue: clustered shock angle within 1 deg of theory
+const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
+const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("pipeline_e2e_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+int run(const std::string& args) {
+  const int rc = std::system((kPipeline + " " + args).c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+// Every number in the JSON tree is finite (nulls are "does not apply").
+void expect_all_finite(const nlohmann::json& j, const std::string& path) {
+  if (j.is_number()) {
+    EXPECT_TRUE(std::isfinite(j.get<double>())) << path;
+  } else if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) expect_all_finite(it.value(), path + "." + it.key());
+  } else if (j.is_array()) {
+    for (std::size_t k = 0; k < j.size(); ++k) expect_all_finite(j[k], path + "[" + std::to_string(k) + "]");
+  }
+}
+
+}  // namespace
+
+TEST(EndToEnd, BadSceneFailsBeforeAnyStage) {
+  const auto out = fresh_dir("bad");
+  EXPECT_EQ(run("run " + kData + "/bad/unknown_key.yaml --out " + out.string() + " 2>/dev/null"), 2);
+  EXPECT_FALSE(fs::exists(out / "granular"));
+  EXPECT_EQ(run("run /nonexistent.yaml --out " + out.string() + " 2>/dev/null"), 2);
+  EXPECT_EQ(run("run 2>/dev/null"), 2);
+}
+
+TEST(EndToEnd, SmallWedgeReportsAFiniteVerdict) {
+  const auto out = fresh_dir("wedge");
+  ASSERT_EQ(run("run " + kData + "/wedge_small.yaml --out " + out.string() + " > /dev/null"), 0);
+  ASSERT_TRUE(fs::exists(out / "report.md"));
+  const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
+  expect_all_finite(j, "summary");
+  ASSERT_TRUE(j["clustered"].is_object());
+  ASSERT_TRUE(j["uniform"].is_object());
+  for (const char* k : {"cells", "cfd_wall_seconds", "shock", "steady_state_reached", "shock_angle_deg",
+                        "exact_shock_angle_deg", "error"}) {
+    EXPECT_TRUE(j["clustered"].contains(k)) << k;
+    EXPECT_TRUE(j["uniform"].contains(k)) << k;
+  }
+  const double exact = j["clustered"]["exact_shock_angle_deg"];
+  EXPECT_NEAR(exact, 27.38, 0.01);
+  EXPECT_NEAR(j["clustered"]["shock_angle_deg"].get<double>(), exact, kAngleTolDeg);
+  // A rerun is served from the cache.
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run("run " + kData + "/wedge_small.yaml --out " + out.string() + " > /dev/null"), 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+            j["total_wall_seconds"].get<double>());
+}
+
+TEST(EndToEnd, KilledMidRunThenRerunResumes) {
+  const auto out = fresh_dir("resume");
+  const std::string scene = kData + "/wedge_small_nocfd.yaml";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::execl(kPipeline.c_str(), "pipeline", "run", scene.c_str(), "--out", out.c_str(), static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  // Interrupt as soon as the granular stage has finished.
+  const auto record = out / "granular" / ".stage.json";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(10);
+  while (!fs::exists(record) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(fs::exists(record));
+  const auto stamp = fs::last_write_time(record);
+  const auto fields = fs::last_write_time(out / "granular" / "fields.vti");
+  ASSERT_EQ(run("run " + scene + " --out " + out.string() + " > /dev/null"), 0);
+  EXPECT_EQ(fs::last_write_time(record), stamp);           // granular not rerun
+  EXPECT_EQ(fs::last_write_time(out / "granular" / "fields.vti"), fields);
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+  // --force reruns the stage.
+  ASSERT_EQ(run("run " + scene + " --out " + out.string() + " --force granular > /dev/null"), 0);
+  EXPECT_NE(fs::last_write_time(record), stamp);
+}

@@ -1,0 +1,52 @@
+#pragma once
+// From a body scene to the engine's flow configuration: the scale (particle
+// diameters per body length), the walls, the inflow state and its granular
+// Mach number. Engine units: lengths in particle diameters d, mass m = 1,
+// temperature in units of the inflow temperature T (so T = 1), times in
+// d / sqrt(T/m). Scene units: body lengths.
+#include <cstdint>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "granular/engine.hpp"
+#include "scene/body.hpp"
+#include "scene/scene.hpp"
+
+namespace granular {
+
+// Henderson's equation of state of the hard-disk fluid, Z = p / (n T)
+// = (1 + nu^2/8) / (1 - nu)^2, accurate to ~1% up to nu ~ 0.6.
+double henderson_z(double nu);
+// Adiabatic sound speed of the hard-disk fluid (m = 1): the internal energy
+// is kinetic only (c_v = 1 per disk in 2D), so
+// c^2 = T (Z + nu dZ/dnu + Z^2); the dilute limit is c^2 = 2T (gamma = 2).
+double sound_speed(double nu, double temperature);
+// Granular Mach number of the scene: granular.mach, else freestream.mach.
+double granular_mach(const scene::Scene& s);
+
+struct FlowSetup {
+  scene::BodyGeometry body;     // scene units
+  scene::Domain domain;         // scene units: the lattice spans it
+  double scale = 1.0;           // particle diameters per scene length unit
+  double mach = 3.0;            // granular Mach number U / c
+  double packing_fraction = 0;  // inflow
+  double number_density = 0;    // inflow, disks per d^2
+  double sound_speed = 0;       // inflow, sqrt(T/m) units
+  double flow_through_time = 0; // domain length / U
+  double fluid_area = 0;        // domain minus body, d^2
+  double expected_particles = 0;  // inflow density times fluid area
+  FlowConfig config;            // engine units; seed set per replica
+};
+
+// Throws InputError (naming the key) for scenes the flow cannot model.
+FlowSetup make_flow_setup(const scene::Scene& s);
+
+// Scene <-> engine coordinates (the engine frame is the scene frame scaled).
+inline scene::Vec2 to_engine(const FlowSetup& f, scene::Vec2 p) { return f.scale * p; }
+inline scene::Vec2 to_scene(const FlowSetup& f, scene::Vec2 p) { return p / f.scale; }
+
+// Resolved flow parameters as JSON (for --dry-run and summary.json).
+nlohmann::json describe(const FlowSetup& f);
+
+}  // namespace granular

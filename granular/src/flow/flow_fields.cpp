@@ -1,0 +1,147 @@
+#include "granular/flow_fields.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace granular {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kDiskArea = std::numbers::pi / 4.0;
+// Sub-points per side to measure the part of a cell outside the body: cells
+// cut by the wall hold disks only in their fluid part, so densities divide
+// by that area, not the whole cell.
+constexpr int kCellSubSamples = 6;
+// Fewest samples for a velocity/temperature value: the temperature is a
+// variance, which needs two.
+constexpr double kMinSamples = 2.0;
+// Cells whose fluid part is this small give meaningless densities; treat
+// them as body.
+constexpr double kMinFluidFraction = 0.05;
+
+struct CellValues {
+  double nu = kNaN, n = kNaN, u = kNaN, v = kNaN, t = kNaN;
+};
+
+CellValues cell_values(const FieldSums& s, std::size_t c, double cell_area) {
+  CellValues out;
+  const double snaps = s.snapshots();
+  if (!(snaps > 0) || !(cell_area > 0)) return out;
+  const double cnt = s.at(FieldSums::count, c);
+  out.n = cnt / (snaps * cell_area);
+  out.nu = out.n * kDiskArea;
+  if (cnt >= kMinSamples) {
+    out.u = s.at(FieldSums::sum_u, c) / cnt;
+    out.v = s.at(FieldSums::sum_v, c) / cnt;
+    const double var = (s.at(FieldSums::sum_uu, c) + s.at(FieldSums::sum_vv, c)) / cnt -
+                       out.u * out.u - out.v * out.v;
+    // Two velocity components: T = m <|c|^2> / 2, with Bessel's correction.
+    out.t = std::max(0.0, 0.5 * var * cnt / (cnt - 1.0));
+  }
+  return out;
+}
+
+// Standard error of the mean over blocks of one cell quantity (NaN if fewer
+// than two blocks have it).
+double standard_error(const std::vector<double>& x) {
+  double sum = 0, sum2 = 0;
+  int k = 0;
+  for (const double a : x)
+    if (std::isfinite(a)) {
+      sum += a;
+      sum2 += a * a;
+      ++k;
+    }
+  if (k < 2) return kNaN;
+  const double mean = sum / k;
+  const double var = std::max(0.0, (sum2 - k * mean * mean) / (k - 1));
+  return std::sqrt(var / k);
+}
+
+}  // namespace
+
+scene::Lattice flow_lattice(const FlowSetup& f, int nx, int ny) {
+  const scene::Domain& d = f.domain;
+  return scene::Lattice(nx, ny, d.xmin, d.ymin, d.width() / nx, d.height() / ny);
+}
+
+Binner::Binner(const FlowSetup& f, const scene::Lattice& g)
+    : inv_scale_(1.0 / f.scale), x0_(g.x0), y0_(g.y0), inv_dx_(1.0 / g.dx), inv_dy_(1.0 / g.dy),
+      nx_(g.nx), ny_(g.ny) {}
+
+std::size_t Binner::cell_of(scene::Vec2 r) const {
+  const double fx = (r.x * inv_scale_ - x0_) * inv_dx_;
+  const double fy = (r.y * inv_scale_ - y0_) * inv_dy_;
+  if (!(fx >= 0.0 && fy >= 0.0)) return npos;
+  // A disk exactly on the far edge belongs to the last cell.
+  const int i = std::min(static_cast<int>(fx), nx_ - 1);
+  const int j = std::min(static_cast<int>(fy), ny_ - 1);
+  if (fx > nx_ || fy > ny_) return npos;
+  return static_cast<std::size_t>(i + nx_ * j);
+}
+
+scene::Lattice make_fields(const FlowSetup& f, const scene::Lattice& geometry,
+                           const std::vector<FieldSums>& blocks) {
+  scene::Lattice lat = geometry;
+  const std::size_t ncell = static_cast<std::size_t>(lat.nx) * static_cast<std::size_t>(lat.ny);
+  auto& nu = lat.add("volume_fraction", kNaN);
+  auto& n = lat.add("number_density", kNaN);
+  auto& u = lat.add("u", kNaN);
+  auto& v = lat.add("v", kNaN);
+  auto& t = lat.add("temperature", kNaN);
+  auto& p = lat.add("pressure", kNaN);
+  auto& mach = lat.add("mach", kNaN);
+  auto& samples = lat.add("samples", kNaN);
+  auto& inside = lat.add("inside_body", 0.0);
+  auto& nu_se = lat.add("volume_fraction_se", kNaN);
+  auto& u_se = lat.add("u_se", kNaN);
+  auto& v_se = lat.add("v_se", kNaN);
+
+  FieldSums pooled(ncell);
+  for (const FieldSums& b : blocks) pooled += b;
+  const double cell_area_d2 = lat.dx * lat.dy * f.scale * f.scale;
+  std::vector<double> bnu(blocks.size()), bu(blocks.size()), bv(blocks.size());
+  for (int j = 0; j < lat.ny; ++j)
+    for (int i = 0; i < lat.nx; ++i) {
+      const std::size_t c = lat.index(i, j);
+      int fluid = 0;
+      for (int b = 0; b < kCellSubSamples; ++b)
+        for (int a = 0; a < kCellSubSamples; ++a) {
+          const scene::Vec2 q{lat.x0 + (i + (a + 0.5) / kCellSubSamples) * lat.dx,
+                              lat.y0 + (j + (b + 0.5) / kCellSubSamples) * lat.dy};
+          if (!scene::point_in_body(f.body, q)) ++fluid;
+        }
+      const double fluid_fraction = static_cast<double>(fluid) / (kCellSubSamples * kCellSubSamples);
+      if (scene::point_in_body(f.body, {lat.xc(i), lat.yc(j)}) || fluid_fraction < kMinFluidFraction) {
+        inside[c] = 1.0;
+        continue;
+      }
+      const double area = cell_area_d2 * fluid_fraction;
+      const CellValues cv = cell_values(pooled, c, area);
+      samples[c] = pooled.at(FieldSums::count, c);
+      nu[c] = cv.nu;
+      n[c] = cv.n;
+      u[c] = cv.u;
+      v[c] = cv.v;
+      t[c] = cv.t;
+      if (std::isfinite(cv.t)) {
+        p[c] = cv.n * cv.t * henderson_z(cv.nu);
+        const double cs = sound_speed(cv.nu, cv.t);
+        mach[c] = cs > 0 ? std::hypot(cv.u, cv.v) / cs : kNaN;
+      }
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        const CellValues bc = cell_values(blocks[b], c, area);
+        bnu[b] = bc.nu;
+        bu[b] = bc.u;
+        bv[b] = bc.v;
+      }
+      nu_se[c] = standard_error(bnu);
+      u_se[c] = standard_error(bu);
+      v_se[c] = standard_error(bv);
+    }
+  return lat;
+}
+
+}  // namespace granular

@@ -1,0 +1,122 @@
+#include "granular/flow_setup.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "scene/errors.hpp"
+
+namespace granular {
+
+namespace {
+
+// Disk area in units of d^2 (radius 1/2).
+constexpr double kDiskArea = std::numbers::pi / 4.0;
+// Sub-cells per side when measuring the fluid (non-body) area of the domain.
+constexpr int kAreaSamples = 256;
+// Closest packing of disks: an inflow at or above it cannot exist; beyond
+// ~0.7 the fluid crystallises and Henderson's Z is meaningless.
+constexpr double kMaxInflowPacking = 0.6;
+
+double fluid_area_scene(const scene::BodyGeometry& g, const scene::Domain& d) {
+  const double hx = d.width() / kAreaSamples, hy = d.height() / kAreaSamples;
+  int inside = 0;
+  for (int j = 0; j < kAreaSamples; ++j)
+    for (int i = 0; i < kAreaSamples; ++i)
+      if (scene::point_in_body(g, {d.xmin + (i + 0.5) * hx, d.ymin + (j + 0.5) * hy})) ++inside;
+  return d.width() * d.height() * (1.0 - static_cast<double>(inside) / (kAreaSamples * kAreaSamples));
+}
+
+}  // namespace
+
+double henderson_z(double nu) { return (1.0 + nu * nu / 8.0) / ((1.0 - nu) * (1.0 - nu)); }
+
+double sound_speed(double nu, double temperature) {
+  const double z = henderson_z(nu);
+  const double dz = (nu / 4.0) / ((1.0 - nu) * (1.0 - nu)) + 2.0 * (1.0 + nu * nu / 8.0) / std::pow(1.0 - nu, 3);
+  return std::sqrt(temperature * (z + nu * dz + z * z));
+}
+
+double granular_mach(const scene::Scene& s) { return s.granular.mach.value_or(s.freestream.mach); }
+
+FlowSetup make_flow_setup(const scene::Scene& s) {
+  if (!s.body) throw scene::InputError(s.source_file + ": granular flow needs a body: section");
+  const scene::GranularParams& p = s.granular;
+  const std::string where = s.source_file + ": granular: ";
+  FlowSetup f;
+  f.body = scene::make_body(*s.body);
+  f.domain = scene::scene_domain(s);  // InputError when the body touches an edge
+  // Gravity across the stream breaks the mirror symmetry: model the full body.
+  if (f.domain.symmetric && p.gravity.y != 0.0) {
+    f.domain.ymin = -f.domain.ymax;
+    f.domain.symmetric = false;
+  }
+  f.mach = granular_mach(s);
+  if (!(f.mach > 1.0))
+    throw scene::InputError(where + "key 'mach': the granular Mach number must exceed 1 for a shock, got " +
+                            std::to_string(f.mach));
+  // `packing_fraction` (the box key) is accepted for flows as the inflow value.
+  f.packing_fraction = p.packing_fraction.value_or(p.inflow_packing_fraction);
+  if (!(f.packing_fraction > 0.0 && f.packing_fraction <= kMaxInflowPacking))
+    throw scene::InputError(where + "key 'inflow_packing_fraction': expected a value in (0, 0.6], got " +
+                            std::to_string(f.packing_fraction));
+  f.number_density = f.packing_fraction / kDiskArea;
+  f.sound_speed = sound_speed(f.packing_fraction, 1.0);
+
+  const double fluid_scene = fluid_area_scene(f.body, f.domain);
+  // Scale: `particles` (disks in the domain at the inflow density), when
+  // given, fixes the body size in diameters; otherwise body_diameters does.
+  const double body_len = f.body.length;
+  f.scale = p.body_diameters / body_len;
+  if (p.particles)
+    f.scale = std::sqrt(static_cast<double>(*p.particles) / (f.number_density * fluid_scene));
+  f.fluid_area = fluid_scene * f.scale * f.scale;
+  f.expected_particles = f.number_density * f.fluid_area;
+
+  FlowConfig& c = f.config;
+  c.xmin = f.domain.xmin * f.scale;
+  c.xmax = f.domain.xmax * f.scale;
+  c.ymin = f.domain.ymin * f.scale;
+  c.ymax = f.domain.ymax * f.scale;
+  c.symmetric = f.domain.symmetric;
+  std::vector<scene::Vec2> chain = scene::clipped_outline(f.body, f.domain);
+  for (scene::Vec2& q : chain) q = to_engine(f, q);
+  c.body_chains = {chain};
+  c.inflow_speed = f.mach * f.sound_speed;
+  c.temperature = 1.0;
+  c.packing_fraction = f.packing_fraction;
+  c.radius = 0.5;
+  c.mass = 1.0;
+  c.restitution = p.restitution;
+  c.restitution_wall = p.restitution_wall.value_or(p.restitution);
+  c.tc = p.tc;
+  c.gravity = p.gravity;
+  c.seed = p.seed;
+  c.prefill = true;
+  f.flow_through_time = (c.xmax - c.xmin) / c.inflow_speed;
+  return f;
+}
+
+nlohmann::json describe(const FlowSetup& f) {
+  const FlowConfig& c = f.config;
+  return {
+      {"mach", f.mach},
+      {"inflow_speed", c.inflow_speed},
+      {"sound_speed", f.sound_speed},
+      {"inflow_packing_fraction", f.packing_fraction},
+      {"inflow_number_density", f.number_density},
+      {"inflow_pressure", f.number_density * henderson_z(f.packing_fraction)},
+      {"body_diameters", f.body.length * f.scale},
+      {"diameters_per_scene_unit", f.scale},
+      {"domain_diameters", {c.xmin, c.xmax, c.ymin, c.ymax}},
+      {"domain_scene", {f.domain.xmin, f.domain.xmax, f.domain.ymin, f.domain.ymax}},
+      {"symmetric", c.symmetric},
+      {"expected_particles", f.expected_particles},
+      {"flow_through_time", f.flow_through_time},
+      {"restitution", c.restitution},
+      {"restitution_wall", c.restitution_wall},
+      {"gravity", {c.gravity.x, c.gravity.y}},
+  };
+}
+
+}  // namespace granular

@@ -1,0 +1,116 @@
+// End to end through the library on a small wedge: files, keys, free-stream
+// state recovered, compression at the body, no overlaps, reproducibility.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "flow_support.hpp"
+#include "granular/flow_run.hpp"
+#include "granular/flow_setup.hpp"
+#include "scene/cli.hpp"
+#include "scene/scene.hpp"
+
+namespace {
+
+// Overlaps are repaired only beyond round-off; a clean run has none deeper
+// than this (diameters).
+constexpr double kOverlapTol = 1e-9;
+// Free-stream statistics of a short small run: ~10% on density and
+// temperature, a few % on the mean speed.
+constexpr double kDensityTol = 0.12;
+constexpr double kSpeedTol = 0.04;
+constexpr double kTemperatureTol = 0.15;
+// The oblique shock compresses the stream at least this much at the wedge.
+constexpr double kMinCompression = 1.5;
+
+const char* kSmallWedge = R"(
+name: small_wedge
+body: {kind: wedge, angle_deg: 10, length: 1.0}
+freestream: {mach: 3.0}
+granular: {body_diameters: 40, lattice_nx: 40, lattice_ny: 30, warmup: 1.0, averaging: 1.5, replicas: 2, seed: 11}
+)";
+
+}  // namespace
+
+TEST(FlowRun, SmallWedgeWritesFieldsAndSummary) {
+  const std::string dir = flowtest::temp_dir("small_wedge");
+  const scene::Scene s = scene::parse_scene(kSmallWedge);
+  granular::RunOptions o;
+  o.out_dir = dir;
+  o.np = 2;
+  const granular::FlowResult r = granular::run_flow_scene(s, o);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/fields.vti"));
+  ASSERT_TRUE(std::filesystem::exists(dir + "/summary.json"));
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/summary.json"));
+  for (const char* k : {"particles", "collisions", "wall_seconds", "collisions_per_second", "energy_initial",
+                        "energy_final", "max_overlap", "packing_fraction", "replicas", "mach", "inflow_speed",
+                        "warmup_time", "steady_detected"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["replicas"], 2);
+  EXPECT_GT(j["collisions"].get<double>(), 0);
+  EXPECT_LT(j["max_overlap"].get<double>(), kOverlapTol);
+  EXPECT_EQ(j["recoveries"].get<double>(), 0.0);
+
+  const scene::Lattice lat = scene::read_vti(dir + "/fields.vti");
+  EXPECT_EQ(lat.nx, 40);
+  EXPECT_EQ(lat.ny, 30);
+  const scene::Domain d = scene::scene_domain(s);
+  EXPECT_NEAR(lat.x0, d.xmin, 1e-12);
+  // Upstream of the apex the stream is undisturbed.
+  const double u_inf = 3.0 * granular::sound_speed(0.05, 1.0);
+  EXPECT_NEAR(flowtest::upstream_mean(lat, "volume_fraction", -0.05), 0.05, kDensityTol * 0.05);
+  EXPECT_NEAR(flowtest::upstream_mean(lat, "u", -0.05), u_inf, kSpeedTol * u_inf);
+  EXPECT_NEAR(flowtest::upstream_mean(lat, "temperature", -0.05), 1.0, kTemperatureTol);
+  EXPECT_NEAR(flowtest::upstream_mean(lat, "mach", -0.05), 3.0, kSpeedTol * 3 + kTemperatureTol);
+  EXPECT_GT(flowtest::max_of(lat, "volume_fraction"), kMinCompression * 0.05);
+  // Two replicas: the per-cell spread exists in the free stream.
+  EXPECT_TRUE(std::isfinite(flowtest::upstream_mean(lat, "volume_fraction_se", -0.05)));
+  // The apex region is body: marked, NaN.
+  const std::size_t c = lat.index(lat.nx - 1, 0);
+  EXPECT_EQ(lat.field("inside_body")[c], 1.0);
+  EXPECT_TRUE(std::isnan(lat.field("u")[c]));
+  EXPECT_EQ(r.fields.nx, 40);
+}
+
+TEST(FlowRun, ThreadsDoNotChangeTheResult) {
+  // Replicas are independent and reduced in a fixed order: one thread or
+  // two give bit-identical fields.
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.averaging = 0.5;
+  s.granular.warmup = 0.5;
+  granular::RunOptions o1, o2;
+  o1.np = 1;
+  o2.np = 2;
+  const granular::FlowResult a = granular::run_flow_scene(s, o1);
+  const granular::FlowResult b = granular::run_flow_scene(s, o2);
+  const auto& fa = a.fields.field("volume_fraction");
+  const auto& fb = b.fields.field("volume_fraction");
+  ASSERT_EQ(fa.size(), fb.size());
+  for (std::size_t k = 0; k < fa.size(); ++k)
+    if (!std::isnan(fa[k])) ASSERT_EQ(fa[k], fb[k]) << k;
+  EXPECT_EQ(a.summary["collisions"], b.summary["collisions"]);
+}
+
+TEST(FlowRun, SingleReplicaUsesBatchesForTheSpread) {
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.replicas = 1;
+  s.granular.averaging = 1.0;
+  s.granular.warmup = 0.5;
+  const granular::FlowResult r = granular::run_flow_scene(s, granular::RunOptions{});
+  EXPECT_TRUE(std::isfinite(flowtest::upstream_mean(r.fields, "volume_fraction_se", -0.05)));
+}
+
+TEST(FlowRun, WarmupDetectsSteadyState) {
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.warmup.reset();
+  s.granular.replicas = 1;
+  s.granular.averaging = 0.5;
+  const granular::FlowResult r = granular::run_flow_scene(s, granular::RunOptions{});
+  EXPECT_TRUE(r.summary["steady_detected"].get<bool>());
+  EXPECT_GE(r.summary["warmup_flow_throughs"].get<double>(), 1.0 - 1e-9);
+  EXPECT_LT(r.summary["warmup_flow_throughs"].get<double>(), 8.0);
+}

@@ -11,6 +11,11 @@ CfdParams parse_cfd(Section& s) {
   p.force_tol = s.number("force_tol", p.force_tol, positive());
   p.local_time_stepping = s.boolean("local_time_stepping", p.local_time_stepping);
   p.np = static_cast<int>(s.integer("np", p.np, 1, 4096));
+  p.flux_scheme = s.string("flux_scheme", p.flux_scheme, {"Kurganov", "Tadmor"});
+  p.limiter = s.string("limiter", p.limiter, {"vanLeer", "Minmod"});
+  p.min_time = s.number("min_time", p.min_time, non_negative());
+  p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));
+  if (p.write_interval > p.end_time) s.fail("write_interval", "must not exceed end_time");
   return p;
 }
 
@@ -23,6 +28,10 @@ void emit_cfd(YAML::Emitter& e, const CfdParams& p) {
   emit_kv(e, "force_tol", p.force_tol);
   emit_kv(e, "local_time_stepping", p.local_time_stepping);
   emit_kv(e, "np", p.np);
+  emit_kv(e, "flux_scheme", p.flux_scheme);
+  emit_kv(e, "limiter", p.limiter);
+  emit_kv(e, "min_time", p.min_time);
+  emit_kv(e, "steady_checks", p.steady_checks);
   e << YAML::EndMap;
 }
 

@@ -1,16 +1,22 @@
 #pragma once
+#include <string>
 
 namespace scene {
 
-// `cfd:` section. Times in body lengths / free-stream speed of sound.
+// `cfd:` section. Times in flow-through times (domain length / free-stream
+// speed) unless a name says otherwise; see docs/cfd_cases.md.
 struct CfdParams {
   double max_co = 0.5;             // rhoCentralFoam maxCo
   double end_time = 10.0;          // hard stop (flow-through times)
-  double write_interval = 0.1;     // flow-through times between checks
-  double steady_tol = 1e-3;        // relative density change per flow-through time
+  double write_interval = 0.1;     // flow-through times between written times (steady checks)
+  double steady_tol = 1e-3;        // L2 density change per flow-through time, relative to rho_inf
   double force_tol = 1e-3;         // relative body-force change per flow-through time
-  bool local_time_stepping = false;
-  int np = 1;
+  bool local_time_stepping = false;  // ddt localEuler (rhoCentralFoam LTS)
+  int np = 1;                      // MPI ranks (decomposePar / mpirun / reconstructPar)
+  std::string flux_scheme = "Kurganov";  // Kurganov | Tadmor
+  std::string limiter = "vanLeer";       // reconstruction limiter: vanLeer | Minmod
+  double min_time = 1.0;           // flow-through times before a steady state may be declared
+  int steady_checks = 2;           // consecutive written times that must meet both tolerances
 };
 
 }  // namespace scene

@@ -1,0 +1,64 @@
+#pragma once
+// OpenFOAM rhoCentralFoam cases for a scene: instantiate the templates in
+// cfd_cases/templates (OpenFOAM's layout: 0.orig/, constant/, system/,
+// Allrun), run the solver with a steady-state monitor, resample the result.
+// Units: lengths in body lengths, speeds in free-stream speeds of sound,
+// p = T = 1 and rho = gamma in the free stream (docs/cfd_cases.md).
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/lattice.hpp"
+#include "scene/scene.hpp"
+
+namespace cfd {
+
+struct CaseOptions {
+  int np = 1;                                 // overrides scene cfd.np when > 1
+  std::optional<bool> local_time_stepping;    // overrides scene cfd.local_time_stepping
+};
+
+struct CaseResult {
+  bool steady_state_reached = false;
+  double wall_seconds = 0.0;   // solver start to solver exit (steady stop included)
+  double sim_time = 0.0;       // simulated (pseudo-)time of the final state, body lengths / c
+  long steps = 0;              // solver time steps
+  long cells = 0;
+  double wall_pressure_ratio = 0.0;  // wedge: mean wall p / free-stream p on the face; NaN otherwise
+  std::string case_dir;
+  std::string history_csv;
+  // Extra facts for reports.
+  double flow_through_time = 0.0;    // domain length / free-stream speed
+  double final_density_change_l2 = 0.0;   // per flow-through time, relative to rho_inf
+  double final_density_change_max = 0.0;
+  double final_force_change = 0.0;
+  bool local_time_stepping = false;
+  int np = 1;
+  nlohmann::json summary() const;
+};
+
+// Runs the scene on the mesh in mesh_dir/constant/polyMesh (patches inlet,
+// outlet, top, bottom, body, frontAndBack) in case_dir (created; an existing
+// case there is replaced). Throws scene::RunError on divergence or a solver
+// failure (the case is kept for inspection), scene::InputError on a bad mesh.
+CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                    const CaseOptions& o);
+
+// Resamples the latest time of case_dir onto an nx x ny lattice covering the
+// scene domain: fields rho, u, v, p, T, mach and inside_body (1 inside, 0
+// outside; the others NaN inside the body or outside the mesh). Writes nothing.
+scene::Lattice resample_to_lattice(const scene::Scene& s, const std::string& case_dir, int nx, int ny);
+
+// Development/test grid without meshgen: a uniform blockMesh grid of the upper
+// half of a wedge scene (symmetry plane, then the wedge face as `body`), with
+// about `cells` cells; writes out_dir/constant/polyMesh (and log.blockMesh).
+// InputError for a scene that is not an attached-shock wedge.
+void make_wedge_block_mesh(const scene::Scene& s, long cells, const std::string& out_dir,
+                           double grading_y = 1.0);
+
+// Directory of the case templates: $SHOCKGRAIN_CFD_TEMPLATES, the source tree
+// (compile-time), or <exe>/../share/shockgrain/cfd_cases/templates.
+std::string template_dir();
+
+}  // namespace cfd

@@ -1,0 +1,57 @@
+#pragma once
+// Reading the written times of a running case (serial, or every processorN
+// of a decomposed one) and the steady-state measures between them.
+#include <string>
+#include <vector>
+
+#include "case_setup.hpp"
+#include "cfd/foam_reader.hpp"
+#include "scene/scene.hpp"
+
+namespace cfd {
+
+struct Snapshot {
+  double time = 0.0;
+  std::string name;
+  std::vector<double> rho;  // all parts, concatenated
+  scene::Vec2 force;        // pressure force on the body per unit depth
+  double wall_pressure_ratio = 0.0;  // NaN unless a wedge
+};
+
+struct HistoryRow {
+  double time = 0, flow_throughs = 0, wall_seconds = 0;
+  long steps = 0;
+  double drho_l2 = 0, drho_max = 0, dforce = 0;  // per flow-through time
+  scene::Vec2 force;
+  double wall_pressure_ratio = 0;
+};
+
+class CaseReader {
+ public:
+  // np > 1: reads processor0..np-1 (the decomposed case).
+  CaseReader(const scene::Scene& s, const std::string& case_dir, int np);
+  // Written times after `after` (strictly), from the case or processor0.
+  std::vector<TimeDir> times_after(double after) const;
+  // Throws scene::RunError when a field is not finite or rho, p <= 0.
+  Snapshot read(const TimeDir& t) const;
+  long cells() const;
+  const std::vector<Mesh2D>& parts() const { return parts_; }
+
+ private:
+  std::string case_dir_;
+  std::vector<std::string> part_dirs_;
+  std::vector<Mesh2D> parts_;
+  bool wedge_ = false;
+  double wedge_length_ = 1.0;
+  double p_inf_ = 1.0;
+};
+
+// Measures between two snapshots, normalised per flow-through time.
+HistoryRow compare(const Snapshot& prev, const Snapshot& cur, const std::vector<Mesh2D>& parts,
+                   double rho_inf, double flow_through);
+
+// history.csv and, with gnuplot, history.png next to it.
+void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows, double steady_tol,
+                   double force_tol, bool plot);
+
+}  // namespace cfd

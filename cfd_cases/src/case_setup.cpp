@@ -1,0 +1,178 @@
+#include "case_setup.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <regex>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <fmt/format.h>
+
+#include "cfd/run_case.hpp"
+#include "foam_process.hpp"
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+
+#ifndef CFD_TEMPLATE_SOURCE_DIR
+#define CFD_TEMPLATE_SOURCE_DIR ""
+#endif
+
+namespace cfd {
+namespace fs = std::filesystem;
+using scene::InputError;
+
+namespace {
+
+// OpenFOAM's universal gas constant RR = 1e3 N_A k (J/(kmol K)) in v1912's
+// thermodynamicConstants; molWeight = RR gamma gives R = 1/gamma.
+constexpr double kFoamRR = 8314.47;
+
+// OpenFOAM re-reads a modified controlDict only if its time stamp moved by
+// more than fileModificationSkew (10 s in v1912's etc/controlDict). Dating
+// the instantiated file back by this much lets the monitor's edit be seen
+// however soon after the start it comes.
+constexpr long kControlDictBackdateSeconds = 3600;
+
+std::string num(double v) { return fmt::format("{:.12g}", v); }
+
+void backdate(const std::string& path) {
+  struct timespec ts[2];
+  clock_gettime(CLOCK_REALTIME, &ts[0]);
+  ts[0].tv_sec -= kControlDictBackdateSeconds;
+  ts[1] = ts[0];
+  utimensat(AT_FDCWD, path.c_str(), ts, 0);
+}
+
+}  // namespace
+
+std::string template_dir() {
+  std::vector<std::string> c;
+  if (const char* e = std::getenv("SHOCKGRAIN_CFD_TEMPLATES")) c.emplace_back(e);
+  c.emplace_back(CFD_TEMPLATE_SOURCE_DIR);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) c.push_back((exe.parent_path() / "../share/shockgrain/cfd_cases/templates").string());
+  for (const auto& d : c)
+    if (!d.empty() && fs::exists(fs::path(d) / "rhoCentralFoam/system/controlDict")) return d;
+  throw InputError("cfd case templates not found (set SHOCKGRAIN_CFD_TEMPLATES to cfd_cases/templates)");
+}
+
+Freestream freestream(const scene::Scene& s) {
+  Freestream f;
+  f.mach = s.freestream.mach;
+  f.gamma = s.freestream.gamma;
+  return f;
+}
+
+std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
+                              const std::string& origin) {
+  std::string out = text;
+  for (const auto& [k, v] : values) {
+    const std::string key = "@" + k + "@";
+    for (std::size_t p = out.find(key); p != std::string::npos; p = out.find(key, p + v.size()))
+      out.replace(p, key.size(), v);
+  }
+  static const std::regex left(R"(@[A-Z_]+@)");
+  std::smatch m;
+  if (std::regex_search(out, m, left))
+    throw std::logic_error(origin + ": placeholder " + m.str() + " has no value");
+  return out;
+}
+
+double free_stream_time_step(const Mesh2D& m, const Freestream& f, double max_co) {
+  double dt = std::numeric_limits<double>::infinity();
+  const double c = std::sqrt(f.T);  // speed of sound, gamma R T with R = 1/gamma
+  for (std::size_t k = 0; k < m.cells(); ++k) {
+    double sum = 0;
+    for (const auto& [len, n] : m.cell_edges[k]) sum += len * (std::abs(f.mach * n.x) + c);
+    if (sum > 0) dt = std::min(dt, 2.0 * max_co * m.cell_area[k] / sum);
+  }
+  return dt;
+}
+
+void check_patches(const Mesh2D& m, const std::string& mesh_dir) {
+  static const std::vector<std::string> roles{"inlet", "outlet", "top", "bottom", "body"};
+  bool has_body = false, has_inlet = false;
+  for (const PatchInfo& p : m.patches) {
+    if (p.type == "empty" || p.type == "symmetryPlane" || p.type == "symmetry" || p.type == "processor") {
+      if (p.name == "body" || p.name == "inlet")
+        throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name + "' has type " + p.type);
+      continue;
+    }
+    if (std::find(roles.begin(), roles.end(), p.name) == roles.end())
+      throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
+                       "' is not one of inlet, outlet, top, bottom, body (or an empty/symmetryPlane patch)");
+    has_body = has_body || p.name == "body";
+    has_inlet = has_inlet || p.name == "inlet";
+  }
+  if (!has_body || !has_inlet)
+    throw InputError(mesh_dir + "/constant/polyMesh/boundary: the mesh needs patches 'inlet' and 'body'");
+}
+
+void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                const CaseSettings& cs) {
+  const fs::path cd(case_dir);
+  if (fs::exists(cd)) {
+    const bool is_case = fs::exists(cd / "system/controlDict") || fs::is_empty(cd);
+    if (!is_case)
+      throw InputError(case_dir + ": exists and is not an OpenFOAM case (no system/controlDict); not replacing it");
+    // Keep a mesh that lives inside the case directory itself.
+    if (fs::equivalent(fs::path(mesh_dir), cd))
+      throw InputError(case_dir + ": the mesh directory must differ from the case directory");
+    fs::remove_all(cd);
+  }
+  scene::make_dirs(case_dir);
+  const Freestream f = freestream(s);
+  const scene::CfdParams& p = s.cfd;
+  std::map<std::string, std::string> v{
+      {"P_INF", num(f.p)},
+      {"T_INF", num(f.T)},
+      {"MACH", num(f.mach)},
+      {"MOL_WEIGHT", num(kFoamRR * f.gamma)},
+      {"CP", num(1.0 / (f.gamma - 1.0))},
+      {"END_TIME", num(cs.end_time)},
+      {"DELTA_T", num(cs.dt_ref)},
+      {"WRITE_CONTROL", cs.lts ? "timeStep" : "adjustableRunTime"},
+      {"WRITE_INTERVAL", cs.lts ? std::to_string(cs.write_steps) : num(cs.write_interval)},
+      {"ADJUST_TIME_STEP", cs.lts ? "no" : "yes"},
+      {"MAX_CO", num(p.max_co)},
+      {"MAX_DELTA_T", num(cs.flow_through)},
+      {"FLUX_SCHEME", p.flux_scheme},
+      {"DDT_SCHEME", cs.lts ? "localEuler" : "Euler"},
+      {"RECONSTRUCT", p.limiter},
+      {"NP", std::to_string(cs.np)},
+      {"FOAM_BASHRC", foam_bashrc()},
+      {"SCENE", s.name},
+  };
+  const fs::path tdir = fs::path(template_dir()) / "rhoCentralFoam";
+  for (const auto& e : fs::recursive_directory_iterator(tdir)) {
+    const fs::path rel = fs::relative(e.path(), tdir);
+    if (e.is_directory()) {
+      fs::create_directories(cd / rel);
+      continue;
+    }
+    const std::string text = fill_placeholders(scene::read_file(e.path().string()), v, e.path().string());
+    scene::write_file_atomic((cd / rel).string(), text);
+    if (rel == "Allrun") fs::permissions(cd / rel, fs::perms::owner_exec | fs::perms::group_exec,
+                                         fs::perm_options::add);
+  }
+  scene::write_file_atomic((cd / "scene.yaml").string(), scene::to_yaml(s));
+  fs::copy(fs::path(mesh_dir) / "constant/polyMesh", cd / "constant/polyMesh", fs::copy_options::recursive);
+  fs::copy(cd / "0.orig", cd / "0", fs::copy_options::recursive);
+  backdate((cd / "system/controlDict").string());
+}
+
+void set_control(const std::string& case_dir, const std::string& key, const std::string& value) {
+  const std::string path = case_dir + "/system/controlDict";
+  const std::string text = scene::read_file(path);
+  const std::regex re("\\n" + key + "[ \\t]+[^;]*;");
+  if (!std::regex_search(text, re)) throw std::logic_error(path + ": no entry " + key);
+  scene::write_file_atomic(path, std::regex_replace(text, re, "\n" + key + "    " + value + ";",
+                                                    std::regex_constants::format_first_only));
+}
+
+}  // namespace cfd

@@ -1,0 +1,52 @@
+#pragma once
+// Instantiating the case templates for a scene (private to cfd_core).
+#include <map>
+#include <string>
+
+#include "cfd/foam_reader.hpp"
+#include "scene/scene.hpp"
+
+namespace cfd {
+
+// Free-stream state of the normalised perfect gas (c = 1 at T = 1).
+struct Freestream {
+  double mach = 0, gamma = 1.4;
+  double p = 1.0, T = 1.0;
+  double rho() const { return gamma * p / T; }  // R = 1/gamma
+};
+Freestream freestream(const scene::Scene& s);
+
+// Settings resolved from the scene and options.
+struct CaseSettings {
+  int np = 1;
+  bool lts = false;
+  double flow_through = 1.0;   // domain length / U
+  double dt_ref = 0.0;         // global time step of the free stream at maxCo on this mesh
+  double end_time = 0.0;       // body lengths / c
+  double write_interval = 0.0; // body lengths / c
+  long write_steps = 0;        // LTS: steps between written times
+};
+
+// Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
+std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
+                              const std::string& origin);
+
+// Largest stable global time step of the free stream on `m` at Courant
+// number max_co, using rhoCentralFoam's definition
+// Co = 0.5 dt sum_faces (|U.Sf| + c |Sf|) / V.
+double free_stream_time_step(const Mesh2D& m, const Freestream& f, double max_co);
+
+// Checks the mesh patches against the roles the templates know.
+void check_patches(const Mesh2D& m, const std::string& mesh_dir);
+
+// Creates case_dir from the templates, the mesh and the settings; copies
+// 0.orig to 0. Replaces an existing case there (InputError if case_dir holds
+// something that is not an OpenFOAM case).
+void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                const CaseSettings& cs);
+
+// Sets `key value;` in system/controlDict (atomic, so the running solver
+// never reads half a file).
+void set_control(const std::string& case_dir, const std::string& key, const std::string& value);
+
+}  // namespace cfd

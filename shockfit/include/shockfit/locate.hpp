@@ -1,0 +1,61 @@
+#pragma once
+// The shock locator: two-line fits along body normals (docs/shockfit.md).
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/lattice.hpp"
+#include "scene/scene.hpp"
+#include "scene/vec2.hpp"
+
+namespace shockfit {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct StationFit {
+  int station = 0;
+  scene::Vec2 surface, normal, shock;  // shock: NaN where no fit was possible
+  double distance = 0.0;               // shock distance from the surface along the normal
+  double ci = 0.0;                     // 95% half-width of `distance` (scene units)
+  double fit_error = 0.0;              // rms residual of the two lines (field units)
+  bool accepted = false;               // a jump was found (and, attached, it lies on the shock line)
+};
+
+struct ShockResult {
+  std::string shock = "none";  // attached | detached | none
+  std::string field;           // lattice field used
+  double shock_angle_deg = kNaN, shock_angle_ci_deg = kNaN;  // NaN when n/a
+  double standoff = kNaN, standoff_ci = kNaN;              // body lengths
+  std::vector<StationFit> stations;
+
+  // Details (NaN when n/a).
+  double shock_angle_lo_deg = kNaN, shock_angle_hi_deg = kNaN;  // 95% interval
+  scene::Vec2 line_point{kNaN, kNaN}, line_dir{kNaN, kNaN};  // fitted attached shock
+  double vertex_x = kNaN;          // detached: shock vertex x from the near-axis parabola
+  double curvature_radius = kNaN;  // detached: shock radius of curvature at the vertex (body lengths)
+  StationFit stagnation;                // the fit along the stagnation line (from the nose, along -x)
+  bool stagnation_valid = false;
+  int plot_station = -1;                // station whose profile is plotted
+  nlohmann::json candidates = nlohmann::json::object();  // per field tried: shock, uncertainty
+
+  int accepted_count() const;
+  nlohmann::json summary() const;
+};
+
+// Throws scene::InputError for a scene without a body, a lattice that does
+// not overlap the domain, or a missing field.
+ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& fields);
+// One named field, no automatic choice.
+ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& fields, const std::string& field);
+
+// DIR/shock.csv, DIR/summary.json, DIR/shock.png and DIR/profile.png (the
+// PNGs only when gnuplot runs; otherwise a warning on stderr).
+void write_outputs(const scene::Scene& s, const scene::Lattice& fields, const ShockResult& r,
+                   const std::string& out_dir);
+
+// shock.csv back, columns by name. scene::InputError on a missing, empty or
+// malformed file.
+std::vector<StationFit> read_shock_csv(const std::string& path);
+
+}  // namespace shockfit

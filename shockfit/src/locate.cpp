@@ -1,0 +1,244 @@
+#include "shockfit/locate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene/body.hpp"
+#include "scene/errors.hpp"
+#include "shockfit/profile.hpp"
+#include "shockfit/shock_line.hpp"
+#include "shockfit/two_line_fit.hpp"
+
+namespace shockfit {
+
+namespace {
+
+constexpr double kCi95 = 1.959963984540054;  // two-sided 95% normal quantile
+constexpr int kMinAccepted = 3;              // fewest shock points for a shock line
+// A shock on the stagnation line closer to the nose than this is attached
+// (the nose station of a wedge finds the shock at its apex, up to the cell).
+constexpr double kAttachedCells = 3.0;
+constexpr double kAttachedFraction = 0.02;  // of the body length
+// Outliers from the attached shock line: beyond this many robust sigmas, but
+// never closer than one lattice spacing.
+constexpr double kOutlierSigmas = 3.5;
+constexpr double kOutlierFloorCells = 1.0;
+// The near-axis parabola of a detached shock uses points within this many
+// body lengths of the axis (Billig's hyperbola is a parabola there).
+constexpr double kParabolaReach = 0.5;
+// Two stations closer than this (in lattice spacings) are the same point.
+constexpr double kSamePointCells = 1e-6;
+
+const char* const kDensityFields[] = {"volume_fraction", "rho", "number_density"};
+constexpr const char* kVelocityField = "v";
+
+std::string density_field(const scene::Lattice& lat) {
+  for (const char* f : kDensityFields)
+    if (lat.has(f)) return f;
+  return "";
+}
+
+void check_overlap(const scene::Scene& s, const scene::Domain& d, const scene::Lattice& lat) {
+  if (lat.nx < 1 || lat.ny < 1) throw scene::InputError("lattice has no cells");
+  const double x1 = lat.x0 + lat.nx * lat.dx, y1 = lat.y0 + lat.ny * lat.dy;
+  if (!(x1 > d.xmin && lat.x0 < d.xmax && y1 > d.ymin && lat.y0 < d.ymax))
+    throw scene::InputError("lattice spans x [" + std::to_string(lat.x0) + ", " + std::to_string(x1) + "], y [" +
+                            std::to_string(lat.y0) + ", " + std::to_string(y1) + "], which misses the domain of scene '" +
+                            s.name + "'");
+}
+
+StationFit fit_station(const scene::Lattice& lat, const std::string& field, const scene::Domain& d,
+                       const scene::ShockfitParams& p, int index, scene::Vec2 origin, scene::Vec2 normal) {
+  StationFit sf;
+  sf.station = index;
+  sf.surface = origin;
+  sf.normal = normal;
+  sf.shock = {kNaN, kNaN};
+  sf.distance = sf.ci = sf.fit_error = kNaN;
+  const Profile prof = sample_profile(lat, field, d, origin, normal, p.min_samples);
+  TwoLineOptions opt;
+  opt.window = p.window * prof.spacing;
+  opt.correlation = prof.spacing / std::max(prof.step, 1e-300);
+  opt.noise_factor = p.noise_factor;
+  // Each line spans at least the shock window, so a line never fits the
+  // jump alone.
+  opt.min_segment = std::max(opt.min_segment, static_cast<int>(std::ceil(p.window * opt.correlation)));
+  const TwoLineFit fit = fit_two_lines(prof.t, prof.f, opt);
+  if (!fit.valid) return sf;
+  sf.distance = fit.position;
+  sf.shock = origin + fit.position * normal;
+  sf.ci = kCi95 * fit.sigma_position;
+  sf.fit_error = fit.rms;
+  sf.accepted = fit.accepted;
+  return sf;
+}
+
+// Uncertainty that decides between fields: the interval of the reported number.
+double uncertainty(const ShockResult& r) {
+  const double u = r.shock == "attached" ? r.shock_angle_ci_deg : r.shock == "detached" ? r.standoff_ci : kNaN;
+  return std::isfinite(u) ? u : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+int ShockResult::accepted_count() const {
+  return static_cast<int>(std::count_if(stations.begin(), stations.end(), [](const StationFit& f) { return f.accepted; }));
+}
+
+nlohmann::json ShockResult::summary() const {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["shock"] = shock;
+  j["field"] = field;
+  j["shock_angle_deg"] = num(shock_angle_deg);
+  j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
+  j["shock_angle_ci95_deg"] = std::isfinite(shock_angle_lo_deg)
+                                  ? nlohmann::json::array({shock_angle_lo_deg, shock_angle_hi_deg})
+                                  : nlohmann::json(nullptr);
+  j["standoff"] = num(standoff);
+  j["standoff_ci"] = num(standoff_ci);
+  j["stations"] = static_cast<int>(stations.size());
+  j["stations_accepted"] = accepted_count();
+  j["shock_line"] = shock == "attached" ? nlohmann::json{{"point", {line_point.x, line_point.y}},
+                                                          {"direction", {line_dir.x, line_dir.y}}}
+                                        : nlohmann::json(nullptr);
+  j["shock_vertex_x"] = num(vertex_x);
+  j["shock_curvature_radius"] = num(curvature_radius);
+  j["field_candidates"] = candidates;
+  return j;
+}
+
+ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, const std::string& field) {
+  if (!s.body) throw scene::InputError((s.source_file.empty() ? s.name : s.source_file) + ": scene has no body: nothing to locate a shock on");
+  const scene::BodyGeometry g = scene::make_body(*s.body);
+  const scene::Domain d = scene::scene_domain(s);
+  check_overlap(s, d, lat);
+  (void)lat.field(field);  // InputError naming the fields there are
+  const scene::ShockfitParams& p = s.shockfit;
+  const double cell = std::min(lat.dx, lat.dy);
+  const double L = g.length;
+
+  ShockResult r;
+  r.field = field;
+  const std::vector<scene::Station> st = scene::surface_stations(g, p.stations);
+  for (int k = 0; k < static_cast<int>(st.size()); ++k)
+    r.stations.push_back(fit_station(lat, field, d, p, k, st[k].point, st[k].normal));
+
+  // The stagnation line: from the nose upstream against the free stream.
+  r.stagnation = fit_station(lat, field, d, p, -1, g.nose, {-1.0, 0.0});
+  r.stagnation_valid = std::isfinite(r.stagnation.distance);
+  const double attached_limit = std::max(kAttachedCells * cell, kAttachedFraction * L);
+  const bool detached = r.stagnation.accepted && r.stagnation.distance > attached_limit;
+
+  auto is_nose_station = [&](const StationFit& f) {
+    return scene::norm(f.surface - g.nose) < kSamePointCells * cell && f.normal.x < 0 &&
+           std::abs(f.normal.y) < kSamePointCells;
+  };
+
+  if (detached) {
+    r.shock = "detached";
+    r.standoff = r.stagnation.distance / L;
+    r.standoff_ci = r.stagnation.ci / L;
+    std::vector<scene::Vec2> near_axis;
+    for (const StationFit& f : r.stations)
+      if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
+    if (near_axis.size() >= static_cast<std::size_t>(kMinAccepted)) {
+      const auto [x0, c] = fit_axis_parabola(near_axis);
+      r.vertex_x = x0;
+      r.curvature_radius = c > 0 ? 1.0 / (2.0 * c) / L : kNaN;
+    }
+  } else {
+    // Attached (or none): the shock line through the accepted points. The
+    // nose station of a sharp body looks upstream along the axis and finds
+    // the shock only at the apex, if at all: keep it (as the apex of the
+    // curve) only when it is that close, and never fit it.
+    std::vector<std::size_t> idx;
+    for (std::size_t i = 0; i < r.stations.size(); ++i) {
+      StationFit& f = r.stations[i];
+      if (!f.accepted) continue;
+      if (is_nose_station(f)) {
+        f.accepted = f.distance <= attached_limit;
+        continue;
+      }
+      if (!g.symmetric && f.surface.y < g.nose.y) {  // upper side only: one shock line
+        f.accepted = false;
+        continue;
+      }
+      idx.push_back(i);
+    }
+    std::vector<scene::Vec2> pts;
+    for (const std::size_t i : idx) pts.push_back(r.stations[i].shock);
+    const std::vector<std::size_t> keep = inliers(pts, kOutlierSigmas, kOutlierFloorCells * cell);
+    std::vector<bool> kept(idx.size(), false);
+    for (const std::size_t k : keep) kept[k] = true;
+    std::vector<scene::Vec2> good, normals;
+    std::vector<double> sig;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      StationFit& f = r.stations[idx[k]];
+      if (!kept[k]) {
+        f.accepted = false;
+        continue;
+      }
+      good.push_back(f.shock);
+      normals.push_back(f.normal);
+      sig.push_back(f.ci / kCi95);
+    }
+    if (good.size() >= static_cast<std::size_t>(kMinAccepted)) {
+      r.shock = "attached";
+      const LineFit lf = fit_orthogonal_line(good);
+      r.shock_angle_deg = lf.angle_deg;
+      r.line_point = lf.point;
+      r.line_dir = lf.dir;
+      const Interval iv = bootstrap(good, normals, sig, p.bootstrap, p.seed,
+                                    [](const std::vector<scene::Vec2>& q) { return fit_orthogonal_line(q).angle_deg; });
+      r.shock_angle_lo_deg = iv.lo;
+      r.shock_angle_hi_deg = iv.hi;
+      r.shock_angle_ci_deg = 0.5 * (iv.hi - iv.lo);
+    } else {
+      r.shock = "none";
+      for (StationFit& f : r.stations) f.accepted = false;
+    }
+  }
+
+  // The station whose profile is plotted: the middle accepted one.
+  std::vector<int> acc;
+  for (const StationFit& f : r.stations)
+    if (f.accepted && !is_nose_station(f)) acc.push_back(f.station);
+  if (r.shock == "detached") r.plot_station = r.stations.empty() ? -1 : 0;
+  else if (!acc.empty()) r.plot_station = acc[acc.size() / 2];
+  else r.plot_station = r.stations.empty() ? -1 : static_cast<int>(r.stations.size() / 2);
+  r.candidates[field] = {{"shock", r.shock}, {"uncertainty", std::isfinite(uncertainty(r)) ? nlohmann::json(uncertainty(r)) : nlohmann::json(nullptr)}};
+  return r;
+}
+
+ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
+  const std::string want = s.shockfit.field;
+  const std::string dens = density_field(lat);
+  if (want == "density") {
+    if (dens.empty()) throw scene::InputError("shockfit.field 'density': the lattice has none of volume_fraction, rho, number_density");
+    return locate_shock_with(s, lat, dens);
+  }
+  if (want != "auto") return locate_shock_with(s, lat, want);
+
+  std::vector<ShockResult> cand;
+  if (!dens.empty()) cand.push_back(locate_shock_with(s, lat, dens));
+  if (lat.has(kVelocityField)) cand.push_back(locate_shock_with(s, lat, kVelocityField));
+  if (cand.empty())
+    throw scene::InputError("lattice has none of the fields shockfit can use (volume_fraction, rho, number_density, v)");
+  // Prefer a field that finds a shock; where both do but disagree on its
+  // kind, trust the density (v has no jump on the stagnation line, where it
+  // is zero on both sides); otherwise take the smaller uncertainty.
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < cand.size(); ++i) {
+    const ShockResult& a = cand[best];
+    const ShockResult& b = cand[i];
+    if (a.shock == "none" && b.shock != "none") best = i;
+    else if (a.shock != "none" && b.shock == a.shock && uncertainty(b) < uncertainty(a)) best = i;
+  }
+  ShockResult r = cand[best];
+  for (const ShockResult& c : cand) r.candidates.update(c.candidates);
+  return r;
+}
+
+}  // namespace shockfit

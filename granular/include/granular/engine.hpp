@@ -112,7 +112,8 @@ class Engine {
   void run_collisions(std::uint64_t n);
 
   double time() const;
-  Stats stats() const;  // kinetic_energy computed at time()
+  Stats stats() const;  // kinetic_energy computed at time() (O(N))
+  Stats stats_light() const;  // counters only: kinetic_energy and particles left 0
   const EngineConfig& config() const;
 
   // f(Vec2 r, Vec2 v) at time() for every disk in the system.
@@ -148,6 +149,7 @@ class Engine {
   void reset_measurement();
   double virial_sum() const;
   double measurement_time() const;
+  double energy_time_integral() const;  // int E_kin dt (exact without gravity)
 
   // Checkpoint / restart: the restored engine continues bit-identically.
   void save(std::ostream& out) const;
@@ -156,8 +158,9 @@ class Engine {
   // Bytes held per particle slot (engine data structures, for the benchmark).
   double bytes_per_particle() const;
 
+  struct Impl;  // internal (src/engine/engine_impl.hpp)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

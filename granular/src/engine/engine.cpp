@@ -1,0 +1,456 @@
+// The event loop: prediction, processing, cells. See docs/granular_engine.md.
+#include <algorithm>
+#include <cmath>
+
+#include "contact_time.hpp"
+#include "engine_impl.hpp"
+#include "scene/cli.hpp"
+
+namespace granular {
+
+using detail::EventType;
+using detail::kNever;
+
+namespace {
+
+// An overlap deeper than this (in diameters) is not round-off: processing
+// it counts as a recovery. Round-off overlaps are ~1e-15 per event.
+constexpr double kRecoveryTolerance = 1e-9;
+// Contact points this far past a segment end still count as hitting the
+// segment, so that round-off cannot open a gap at the joint of two
+// collinear or concave segments.
+constexpr double kSegmentEndSlack = 1e-9;
+// Interrupt polling period (events).
+constexpr std::uint64_t kPollMask = 1023;
+
+}  // namespace
+
+void Engine::Impl::advance(Particle& q) const {
+  const double dt = now - q.t;
+  if (dt == 0.0) return;
+  const Vec2 g = cfg.gravity;
+  q.x += q.vx * dt + 0.5 * g.x * dt * dt;
+  q.y += q.vy * dt + 0.5 * g.y * dt * dt;
+  q.vx += g.x * dt;
+  q.vy += g.y * dt;
+  q.t = now;
+}
+
+int Engine::Impl::cell_of(double x, double y) const {
+  int cx = static_cast<int>(std::floor((x - cfg.xmin) / cw));
+  int cy = static_cast<int>(std::floor((y - cfg.ymin) / ch));
+  cx = std::clamp(cx, 0, ncx - 1);
+  cy = std::clamp(cy, 0, ncy - 1);
+  return cy * ncx + cx;
+}
+
+void Engine::Impl::cell_insert(std::int32_t i, int c) {
+  s[i].cell = c;
+  s[i].next = head[c];
+  head[c] = i;
+}
+
+void Engine::Impl::cell_remove(std::int32_t i, int c) {
+  std::int32_t* link = &head[c];
+  while (*link != i) link = &s[*link].next;
+  *link = s[i].next;
+}
+
+void Engine::Impl::schedule(std::int32_t i) {
+  cal.set(static_cast<std::size_t>(i), std::min(s[i].coll_t, s[i].cell_t));
+}
+
+// Next crossing of a face of the particle's cell (state at `now`).
+void Engine::Impl::predict_cell(std::int32_t i) {
+  const Particle& q = p[i];
+  detail::Slot& si = s[i];
+  const int cx = si.cell % ncx, cy = si.cell / ncx;
+  const double xlo = cfg.xmin + cx * cw, xhi = cfg.xmin + (cx + 1) * cw;
+  const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
+  const Vec2 g = cfg.gravity;
+  // Each face is a gap that closes: distance to it, its rate, half accel.
+  const double t0 = detail::first_contact(q.x - xlo, q.vx, 0.5 * g.x);
+  const double t1 = detail::first_contact(xhi - q.x, -q.vx, -0.5 * g.x);
+  const double t2 = detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y);
+  const double t3 = detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y);
+  double best = t0;
+  std::uint8_t dir = 0;
+  if (t1 < best) { best = t1; dir = 1; }
+  if (t2 < best) { best = t2; dir = 2; }
+  if (t3 < best) { best = t3; dir = 3; }
+  si.cell_t = now + best;
+  si.cell_dir = dir;
+}
+
+void Engine::Impl::scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx,
+                                 double vy, double rad_i) {
+  double shx = 0.0, shy = 0.0;
+  if (cx < 0 || cx >= ncx) {
+    if (!periodic_x) return;
+    if (cx < 0) { cx += ncx; shx = -lx; } else { cx -= ncx; shx = lx; }
+  }
+  if (cy < 0 || cy >= ncy) {
+    if (!periodic_y) return;
+    if (cy < 0) { cy += ncy; shy = -ly; } else { cy -= ncy; shy = ly; }
+  }
+  detail::Slot& si = s[i];
+  const Vec2 g = cfg.gravity;
+  const bool accel = g.x != 0.0 || g.y != 0.0;
+  const bool mono = ns == 1;
+  for (std::int32_t k = head[cy * ncx + cx]; k >= 0; k = s[k].next) {
+    if (k == i) continue;
+    const Particle& o = p[k];
+    const double dt = now - o.t;
+    double ox = o.x + o.vx * dt + shx, oy = o.y + o.vy * dt + shy;
+    double ovx = o.vx, ovy = o.vy;
+    if (accel) {
+      ox += 0.5 * g.x * dt * dt;
+      oy += 0.5 * g.y * dt * dt;
+      ovx += g.x * dt;
+      ovy += g.y * dt;
+    }
+    const double sig = mono ? 2.0 * rad_i : rad_i + radius[o.species];
+    const double tc = detail::disk_contact(rx - ox, ry - oy, vx - ovx, vy - ovy, sig * sig);
+    if (now + tc < si.coll_t) {
+      si.coll_t = now + tc;
+      si.type = EventType::disk;
+      si.partner = k;
+      si.pcount = o.count;
+    }
+  }
+}
+
+void Engine::Impl::scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx,
+                                  double vy) {
+  detail::Slot& si = s[i];
+  const double rad = radius[p[i].species];
+  const Vec2 g = cfg.gravity;
+  if (!wall_start.empty()) {
+    for (std::int32_t k = wall_start[c]; k < wall_start[c + 1]; ++k) {
+      const std::int32_t w = wall_list[k];
+      const detail::WallGeom& wg = walls[w];
+      const double ax = rx - wg.a.x, ay = ry - wg.a.y;
+      const double d0 = ax * wg.n.x + ay * wg.n.y;
+      if (d0 <= 0.0) continue;  // behind a one-sided wall: never touches it
+      const double vn = vx * wg.n.x + vy * wg.n.y;
+      const double gn = g.x * wg.n.x + g.y * wg.n.y;
+      const double dt = detail::first_contact(d0 - rad, vn, 0.5 * gn);
+      if (!(now + dt < si.coll_t)) continue;
+      const double along = ax * wg.t.x + ay * wg.t.y + (vx * wg.t.x + vy * wg.t.y) * dt +
+                        0.5 * (g.x * wg.t.x + g.y * wg.t.y) * dt * dt;
+      // Contact beyond the segment's ends: the end vertex (convex) or the
+      // next segment (concave) takes it.
+      if (along < -kSegmentEndSlack || along > wg.length + kSegmentEndSlack) continue;
+      si.coll_t = now + dt;
+      si.type = EventType::wall;
+      si.partner = w;
+    }
+  }
+  if (!vertex_start.empty()) {
+    const bool accel = g.x != 0.0 || g.y != 0.0;
+    for (std::int32_t k = vertex_start[c]; k < vertex_start[c + 1]; ++k) {
+      const std::int32_t v = vertex_list[k];
+      const Vec2 vp = cfg.vertices[v].p;
+      const double dt =
+          accel ? detail::vertex_contact_accelerated(rx - vp.x, ry - vp.y, vx, vy, g.x, g.y, rad,
+                                                     si.cell_t - now)
+                : detail::disk_contact(rx - vp.x, ry - vp.y, vx, vy, rad * rad);
+      if (now + dt < si.coll_t) {
+        si.coll_t = now + dt;
+        si.type = EventType::vertex;
+        si.partner = v;
+      }
+    }
+  }
+}
+
+// Full prediction for slot i: cell crossing plus every possible partner.
+void Engine::Impl::predict(std::int32_t i) {
+  Particle& q = p[i];
+  advance(q);
+  detail::Slot& si = s[i];
+  si.coll_t = kNever;
+  si.type = EventType::none;
+  predict_cell(i);
+  const int cx = si.cell % ncx, cy = si.cell / ncx;
+  const double rad = radius[q.species];
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, cx + dx, cy + dy, q.x, q.y, q.vx, q.vy, rad);
+  scan_walls_for(i, si.cell, q.x, q.y, q.vx, q.vy);
+}
+
+void Engine::Impl::process(std::int32_t i) {
+  detail::Slot& si = s[i];
+  if (si.cell_t <= si.coll_t) {
+    cross_cell(i);
+    return;
+  }
+  switch (si.type) {
+    case EventType::disk: {
+      const std::int32_t j = si.partner;
+      if (!p[j].alive || p[j].count != si.pcount) {
+        // The partner changed course since the prediction: predict again.
+        predict(i);
+        schedule(i);
+        return;
+      }
+      collide_disks(i, j);
+      return;
+    }
+    case EventType::wall: {
+      Particle& q = p[i];
+      advance(q);
+      const detail::WallGeom& wg = walls[si.partner];
+      const double d0 = (q.x - wg.a.x) * wg.n.x + (q.y - wg.a.y) * wg.n.y;
+      const double e = wg.e >= 0.0 ? wg.e : e_wall[q.species];
+      collide_surface(i, wg.n, e, radius[q.species] - d0);
+      return;
+    }
+    case EventType::vertex: {
+      Particle& q = p[i];
+      advance(q);
+      const Vertex& v = cfg.vertices[si.partner];
+      const double rx = q.x - v.p.x, ry = q.y - v.p.y;
+      const double dist = std::sqrt(rx * rx + ry * ry);
+      const double e = v.restitution >= 0.0 ? v.restitution : e_vertex[q.species];
+      collide_surface(i, Vec2{rx / dist, ry / dist}, e, radius[q.species] - dist);
+      return;
+    }
+    case EventType::none:
+      predict(i);
+      schedule(i);
+      return;
+  }
+}
+
+void Engine::Impl::cross_cell(std::int32_t i) {
+  Particle& q = p[i];
+  advance(q);
+  detail::Slot& si = s[i];
+  int cx = si.cell % ncx, cy = si.cell / ncx;
+  const std::uint8_t dir = si.cell_dir;
+  int ncx2 = cx + (dir == 1) - (dir == 0);
+  int ncy2 = cy + (dir == 3) - (dir == 2);
+  if (ncx2 < 0 || ncx2 >= ncx || ncy2 < 0 || ncy2 >= ncy) {
+    const Face face = dir == 0 ? cfg.left : dir == 1 ? cfg.right : dir == 2 ? cfg.bottom : cfg.top;
+    if (face == Face::open) {
+      remove(i);
+      return;
+    }
+    if (face == Face::periodic) {
+      if (ncx2 < 0) { ncx2 += ncx; q.x += lx; }
+      else if (ncx2 >= ncx) { ncx2 -= ncx; q.x -= lx; }
+      else if (ncy2 < 0) { ncy2 += ncy; q.y += ly; }
+      else { ncy2 -= ncy; q.y -= ly; }
+    } else {
+      // A closed face reached by a centre: a wall was tunnelled through.
+      // Reflect the disk back in (specular) and count the recovery.
+      ++st.recoveries;
+      if (dir <= 1) q.vx = -q.vx; else q.vy = -q.vy;
+      ++q.count;
+      predict(i);
+      schedule(i);
+      return;
+    }
+  }
+  const int c = ncy2 * ncx + ncx2;
+  cell_remove(i, si.cell);
+  cell_insert(i, c);
+  predict_cell(i);
+  const bool stale = si.type == EventType::disk &&
+                     (!p[si.partner].alive || p[si.partner].count != si.pcount);
+  if (stale) {
+    predict(i);
+  } else {
+    // Only the cells that just became adjacent can hold a new partner; the
+    // stored prediction already covers the others.
+    const double rad = radius[q.species];
+    if (dir <= 1) {
+      const int fx = ncx2 + (dir == 1 ? 1 : -1);
+      for (int dy = -1; dy <= 1; ++dy) scan_cell_for(i, fx, ncy2 + dy, q.x, q.y, q.vx, q.vy, rad);
+    } else {
+      const int fy = ncy2 + (dir == 3 ? 1 : -1);
+      for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, ncx2 + dx, fy, q.x, q.y, q.vx, q.vy, rad);
+    }
+    scan_walls_for(i, c, q.x, q.y, q.vx, q.vy);
+  }
+  schedule(i);
+}
+
+void Engine::Impl::integrate_energy() {
+  energy_integral += energy * (now - energy_since);
+  energy_since = now;
+}
+
+void Engine::Impl::collide_disks(std::int32_t i, std::int32_t j) {
+  Particle& a = p[i];
+  Particle& b = p[j];
+  advance(a);
+  advance(b);
+  double dx = a.x - b.x, dy = a.y - b.y;
+  // Minimum image: a contact distance is below a third of a periodic side.
+  if (periodic_x) { if (dx > 0.5 * lx) dx -= lx; else if (dx < -0.5 * lx) dx += lx; }
+  if (periodic_y) { if (dy > 0.5 * ly) dy -= ly; else if (dy < -0.5 * ly) dy += ly; }
+  const double dist = std::sqrt(dx * dx + dy * dy);
+  const double sig = radius[a.species] + radius[b.species];
+  const double overlap = sig - dist;
+  st.max_overlap = std::max(st.max_overlap, overlap);
+  if (overlap > kRecoveryTolerance) ++st.recoveries;
+  const double nx = dx / dist, ny = dy / dist;
+  const double vn = (a.vx - b.vx) * nx + (a.vy - b.vy) * ny;
+  if (vn < 0.0) {
+    double e = e_disk[a.species * ns + b.species];
+    if (now - s[i].last_coll < cfg.tc || now - s[j].last_coll < cfg.tc) e = 1.0;
+    const double ma = mass[a.species], mb = mass[b.species];
+    const double jimp = (1.0 + e) * vn * (ma * mb / (ma + mb));  // < 0
+    if (e != 1.0) integrate_energy();
+    const double e_before = 0.5 * (ma * (a.vx * a.vx + a.vy * a.vy) + mb * (b.vx * b.vx + b.vy * b.vy));
+    a.vx -= jimp / ma * nx;
+    a.vy -= jimp / ma * ny;
+    b.vx += jimp / mb * nx;
+    b.vy += jimp / mb * ny;
+    if (e != 1.0) {
+      energy += 0.5 * (ma * (a.vx * a.vx + a.vy * a.vy) + mb * (b.vx * b.vx + b.vy * b.vy)) - e_before;
+    }
+    virial -= jimp * dist;
+    ++a.count;
+    ++b.count;
+    s[i].last_coll = now;
+    s[j].last_coll = now;
+    ++st.collisions;
+    ++st.disk_collisions;
+  }
+  predict(i);
+  predict(j);
+  schedule(i);
+  schedule(j);
+}
+
+void Engine::Impl::collide_surface(std::int32_t i, Vec2 n, double e, double overlap) {
+  Particle& q = p[i];
+  st.max_overlap = std::max(st.max_overlap, overlap);
+  if (overlap > kRecoveryTolerance) ++st.recoveries;
+  const double vn = q.vx * n.x + q.vy * n.y;
+  if (vn < 0.0) {
+    if (now - s[i].last_coll < cfg.tc) e = 1.0;
+    const double m = mass[q.species];
+    if (e != 1.0) {
+      integrate_energy();
+      energy -= 0.5 * m * (1.0 - e * e) * vn * vn;
+    }
+    q.vx -= (1.0 + e) * vn * n.x;
+    q.vy -= (1.0 + e) * vn * n.y;
+    ++q.count;
+    s[i].last_coll = now;
+    ++st.collisions;
+    ++st.wall_collisions;
+  }
+  predict(i);
+  schedule(i);
+}
+
+void Engine::Impl::remove(std::int32_t i) {
+  Particle& q = p[i];
+  integrate_energy();
+  energy -= 0.5 * mass[q.species] * (q.vx * q.vx + q.vy * q.vy);
+  cell_remove(i, s[i].cell);
+  q.alive = 0;
+  ++q.count;  // every prediction naming this slot is now stale
+  s[i].coll_t = kNever;
+  s[i].cell_t = kNever;
+  s[i].type = EventType::none;
+  cal.set(static_cast<std::size_t>(i), kNever);
+  free_slots.push_back(i);
+  ++st.removed;
+}
+
+void Engine::Impl::build_all() {
+  cal.resize(std::max<std::size_t>(p.size(), 1));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p[i].alive) continue;
+    predict(static_cast<std::int32_t>(i));
+    cal.set_quiet(i, std::min(s[i].coll_t, s[i].cell_t));
+  }
+  cal.rebuild();
+  started = true;
+}
+
+// ---------------------------------------------------------------- public
+
+void Engine::start() {
+  if (!impl_->started) impl_->build_all();
+}
+
+void Engine::run_until(double t, std::uint64_t max_collisions) {
+  Impl& m = *impl_;
+  if (!m.started) m.build_all();
+  while (true) {
+    const std::uint32_t i = m.cal.top();
+    const double tk = m.cal.key(i);
+    if (!(tk <= t) || tk == kNever) break;
+    if (m.st.collisions >= max_collisions) return;
+    if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;
+    m.now = tk;
+    m.process(static_cast<std::int32_t>(i));
+  }
+  if (m.st.collisions >= max_collisions) return;
+  if (t != kNever && t > m.now) m.now = t;
+}
+
+void Engine::run_collisions(std::uint64_t n) {
+  run_until(kNever, impl_->st.collisions + n);
+}
+
+double Engine::time() const { return impl_->now; }
+
+Stats Engine::stats() const {
+  Stats out = impl_->st;
+  out.time = impl_->now;
+  double e = 0.0;
+  std::size_t n = 0;
+  for_each_particle_species([&](Vec2, Vec2 v, int sp) {
+    e += 0.5 * impl_->mass[static_cast<std::size_t>(sp)] * norm2(v);
+    ++n;
+  });
+  out.kinetic_energy = e;
+  out.particles = n;
+  return out;
+}
+
+Stats Engine::stats_light() const {
+  Stats out = impl_->st;
+  out.time = impl_->now;
+  return out;
+}
+
+const EngineConfig& Engine::config() const { return impl_->cfg; }
+const std::vector<Particle>& Engine::particles() const { return impl_->p; }
+
+void Engine::reset_measurement() {
+  Impl& m = *impl_;
+  m.virial = 0.0;
+  m.meas_start = m.now;
+  m.energy_integral = 0.0;
+  m.energy_since = m.now;
+}
+
+double Engine::virial_sum() const { return impl_->virial; }
+
+double Engine::measurement_time() const { return impl_->now - impl_->meas_start; }
+
+double Engine::energy_time_integral() const {
+  return impl_->energy_integral + impl_->energy * (impl_->now - impl_->energy_since);
+}
+
+double Engine::bytes_per_particle() const {
+  const Impl& m = *impl_;
+  const double n = static_cast<double>(std::max<std::size_t>(m.p.size(), 1));
+  const double bytes = static_cast<double>(m.p.capacity() * sizeof(Particle) +
+                                           m.s.capacity() * sizeof(detail::Slot) +
+                                           m.head.capacity() * sizeof(std::int32_t) +
+                                           m.free_slots.capacity() * sizeof(std::int32_t)) +
+                       m.cal.bytes();
+  return bytes / n;
+}
+
+}  // namespace granular

@@ -1,0 +1,93 @@
+#pragma once
+// Engine internals, shared by the event loop (engine.cpp), setup
+// (engine_setup.cpp) and checkpointing (checkpoint.cpp).
+#include <cstdint>
+#include <vector>
+
+#include "calendar.hpp"
+#include "granular/engine.hpp"
+
+namespace granular {
+
+namespace detail {
+
+enum class EventType : std::uint8_t { none, disk, wall, vertex };
+
+// Cold per-slot state: the slot's earliest collision prediction and its
+// next cell crossing, kept apart so that a cell crossing does not cost the
+// collision prediction (only the newly adjacent cells are scanned).
+struct Slot {
+  double coll_t;          // predicted collision time (kNever: none)
+  double cell_t;          // next cell-face crossing
+  double last_coll;       // time of the previous collision (TC model)
+  std::int32_t partner;   // disk slot, wall or vertex index
+  std::uint32_t pcount;   // partner's collision counter when predicted
+  std::int32_t cell;      // current cell
+  std::int32_t next;      // next slot in the cell's list (-1: end)
+  EventType type;
+  std::uint8_t cell_dir;  // 0: -x, 1: +x, 2: -y, 3: +y
+};
+
+struct WallGeom {
+  Vec2 a, n, t;  // start, outward unit normal, unit tangent
+  double length;
+  double e;      // < 0: species value
+};
+
+}  // namespace detail
+
+struct Engine::Impl {
+  EngineConfig cfg;
+  // Species tables.
+  std::vector<double> radius, mass, e_wall, e_vertex, e_disk;  // e_disk: ns x ns
+  std::size_t ns = 1;
+  double max_diameter = 1.0;
+  // Grid.
+  int ncx = 1, ncy = 1;
+  double cw = 1, ch = 1, lx = 1, ly = 1;
+  bool periodic_x = false, periodic_y = false;
+  std::vector<std::int32_t> head;            // cell -> first slot
+  std::vector<std::int32_t> wall_start, wall_list;      // CSR cell -> walls
+  std::vector<std::int32_t> vertex_start, vertex_list;  // CSR cell -> vertices
+  std::vector<detail::WallGeom> walls;
+  // Particles.
+  std::vector<Particle> p;
+  std::vector<detail::Slot> s;
+  std::vector<std::int32_t> free_slots;
+  detail::Calendar cal;
+  bool started = false;
+  double now = 0.0;
+  // Statistics and measurement.
+  Stats st;
+  double energy = 0.0;        // running kinetic energy (changed at collisions)
+  double virial = 0.0;        // sum r_ij . dp_i over disk collisions
+  double meas_start = 0.0;
+  double energy_integral = 0.0;
+  double energy_since = 0.0;  // time energy_integral is accumulated to
+  std::uint64_t events = 0;
+
+  void init(EngineConfig c);
+  // Geometry helpers.
+  int cell_of(double x, double y) const;
+  void cell_insert(std::int32_t i, int c);
+  void cell_remove(std::int32_t i, int c);
+  bool overlaps(Vec2 r, int species, double tol, std::int32_t skip) const;
+  // Event loop.
+  void advance(Particle& q) const;
+  void predict(std::int32_t i);
+  void predict_cell(std::int32_t i);
+  void scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx, double vy,
+                     double sig_i);
+  void scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx, double vy);
+  void schedule(std::int32_t i);
+  void process(std::int32_t i);
+  void cross_cell(std::int32_t i);
+  void collide_disks(std::int32_t i, std::int32_t j);
+  void collide_surface(std::int32_t i, Vec2 normal, double e, double overlap);
+  void remove(std::int32_t i);
+  std::int32_t add_slot(Vec2 r, Vec2 v, int species);
+  void integrate_energy();
+  void build_all();
+};
+
+}  // namespace granular

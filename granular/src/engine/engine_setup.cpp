@@ -1,0 +1,280 @@
+// Engine construction: validation, species tables, cell grid, wall and
+// vertex registration, adding disks.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "contact_time.hpp"
+#include "engine_impl.hpp"
+#include "scene/errors.hpp"
+
+namespace granular {
+
+namespace {
+
+// A disk may touch another or a wall to this depth (diameters) when added:
+// explicit configurations are written with finite decimals.
+constexpr double kAddOverlapTolerance = 1e-12;
+// Cells register walls and vertices this much beyond the largest radius, so
+// that round-off in the cell geometry cannot drop a contact.
+constexpr double kRegistrationSlack = 1e-9;
+
+double point_rect_distance(Vec2 q, double x0, double y0, double x1, double y1) {
+  const double dx = std::max({x0 - q.x, 0.0, q.x - x1});
+  const double dy = std::max({y0 - q.y, 0.0, q.y - y1});
+  return std::hypot(dx, dy);
+}
+
+double point_segment_distance(Vec2 q, Vec2 a, Vec2 b) {
+  const Vec2 ab = b - a;
+  const double l2 = norm2(ab);
+  double t = l2 > 0.0 ? dot(q - a, ab) / l2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return norm(q - (a + t * ab));
+}
+
+// Liang-Barsky: does segment ab meet the rectangle?
+bool segment_hits_rect(Vec2 a, Vec2 b, double x0, double y0, double x1, double y1) {
+  double t0 = 0.0, t1 = 1.0;
+  const double d[2] = {b.x - a.x, b.y - a.y};
+  const double lo[2] = {x0 - a.x, y0 - a.y};
+  const double hi[2] = {x1 - a.x, y1 - a.y};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (lo[k] > 0.0 || hi[k] < 0.0) return false;
+      continue;
+    }
+    double ta = lo[k] / d[k], tb = hi[k] / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+double segment_rect_distance(Vec2 a, Vec2 b, double x0, double y0, double x1, double y1) {
+  if (segment_hits_rect(a, b, x0, y0, x1, y1)) return 0.0;
+  double d = std::min(point_rect_distance(a, x0, y0, x1, y1), point_rect_distance(b, x0, y0, x1, y1));
+  for (const Vec2 c : {Vec2{x0, y0}, Vec2{x1, y0}, Vec2{x0, y1}, Vec2{x1, y1}})
+    d = std::min(d, point_segment_distance(c, a, b));
+  return d;
+}
+
+[[noreturn]] void bad(const std::string& msg) { throw scene::InputError("granular engine: " + msg); }
+
+}  // namespace
+
+void Engine::Impl::init(EngineConfig c) {
+  cfg = std::move(c);
+  if (!(cfg.xmax > cfg.xmin) || !(cfg.ymax > cfg.ymin)) bad("empty simulation rectangle");
+  if (cfg.species.empty()) bad("no species");
+  ns = cfg.species.size();
+  if (ns > 65535) bad("too many species");
+  for (const Species& sp : cfg.species) {
+    if (!(sp.radius > 0.0) || !(sp.mass > 0.0)) bad("species radius and mass must be positive");
+    if (!(sp.restitution_wall >= 0.0 && sp.restitution_wall <= 1.0) ||
+        !(sp.restitution_vertex >= 0.0 && sp.restitution_vertex <= 1.0))
+      bad("restitution must lie in [0, 1]");
+    radius.push_back(sp.radius);
+    mass.push_back(sp.mass);
+    e_wall.push_back(sp.restitution_wall);
+    e_vertex.push_back(sp.restitution_vertex);
+    max_diameter = std::max(max_diameter, 2.0 * sp.radius);
+  }
+  max_diameter = 0.0;
+  for (double r : radius) max_diameter = std::max(max_diameter, 2.0 * r);
+  if (cfg.restitution.empty()) {
+    e_disk.assign(ns * ns, 1.0);
+  } else {
+    if (cfg.restitution.size() != ns * ns) bad("restitution matrix must be species x species");
+    e_disk = cfg.restitution;
+    for (std::size_t a = 0; a < ns; ++a)
+      for (std::size_t b = 0; b < ns; ++b)
+        if (e_disk[a * ns + b] != e_disk[b * ns + a]) bad("restitution matrix must be symmetric");
+  }
+  for (double e : e_disk)
+    if (!(e >= 0.0 && e <= 1.0)) bad("restitution must lie in [0, 1]");
+  if (!(cfg.tc >= 0.0)) bad("tc must be >= 0");
+  if ((cfg.left == Face::periodic) != (cfg.right == Face::periodic) ||
+      (cfg.bottom == Face::periodic) != (cfg.top == Face::periodic))
+    bad("periodic faces come in pairs");
+  periodic_x = cfg.left == Face::periodic;
+  periodic_y = cfg.bottom == Face::periodic;
+  if ((periodic_x && cfg.gravity.x != 0.0) || (periodic_y && cfg.gravity.y != 0.0)) {
+    // Allowed: a periodic axis with a force along it is a forced flow.
+  }
+  lx = cfg.xmax - cfg.xmin;
+  ly = cfg.ymax - cfg.ymin;
+  const double cell = std::max(max_diameter, cfg.min_cell);
+  ncx = std::max(1, static_cast<int>(std::floor(lx / cell)));
+  ncy = std::max(1, static_cast<int>(std::floor(ly / cell)));
+  if ((periodic_x && ncx < 3) || (periodic_y && ncy < 3))
+    bad("a periodic side must be at least 3 largest diameters long");
+  const double ncells = static_cast<double>(ncx) * static_cast<double>(ncy);
+  if (ncells > 2.0e9) bad("too many cells");
+  cw = lx / ncx;
+  ch = ly / ncy;
+  head.assign(static_cast<std::size_t>(ncx) * static_cast<std::size_t>(ncy), -1);
+
+  // Walls and vertices, registered in every cell a disk centre in which
+  // could touch them.
+  const double reach = 0.5 * max_diameter + kRegistrationSlack;
+  for (const Wall& w : cfg.walls) {
+    const Vec2 d = w.b - w.a;
+    const double len = norm(d);
+    if (!(len > 0.0)) bad("zero-length wall");
+    if (w.restitution > 1.0) bad("wall restitution must lie in [0, 1]");
+    const Vec2 t = d / len;
+    walls.push_back({w.a, perp(t), t, len, w.restitution});
+  }
+  for (const Vertex& v : cfg.vertices)
+    if (v.restitution > 1.0) bad("vertex restitution must lie in [0, 1]");
+  auto register_all = [&](auto&& dist, std::size_t count, std::vector<std::int32_t>& start,
+                          std::vector<std::int32_t>& list) {
+    if (count == 0) return;
+    std::vector<std::vector<std::int32_t>> per(head.size());
+    for (std::size_t k = 0; k < count; ++k) {
+      // Bounding box of the item expanded by `reach`, clipped to the grid.
+      for (int cy = 0; cy < ncy; ++cy) {
+        const double y0 = cfg.ymin + cy * ch, y1 = cfg.ymin + (cy + 1) * ch;
+        if (!dist.y_ok(k, y0, y1, reach)) continue;
+        for (int cx = 0; cx < ncx; ++cx) {
+          const double x0 = cfg.xmin + cx * cw, x1 = cfg.xmin + (cx + 1) * cw;
+          if (dist(k, x0, y0, x1, y1) <= reach)
+            per[static_cast<std::size_t>(cy * ncx + cx)].push_back(static_cast<std::int32_t>(k));
+        }
+      }
+    }
+    start.assign(head.size() + 1, 0);
+    for (std::size_t c2 = 0; c2 < head.size(); ++c2)
+      start[c2 + 1] = start[c2] + static_cast<std::int32_t>(per[c2].size());
+    list.clear();
+    for (const auto& v : per) list.insert(list.end(), v.begin(), v.end());
+  };
+  struct WallDist {
+    const std::vector<Wall>* w;
+    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
+      return segment_rect_distance((*w)[k].a, (*w)[k].b, x0, y0, x1, y1);
+    }
+    bool y_ok(std::size_t k, double y0, double y1, double r) const {
+      const double lo = std::min((*w)[k].a.y, (*w)[k].b.y) - r, hi = std::max((*w)[k].a.y, (*w)[k].b.y) + r;
+      return y1 >= lo && y0 <= hi;
+    }
+  };
+  struct VertexDist {
+    const std::vector<Vertex>* v;
+    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
+      return point_rect_distance((*v)[k].p, x0, y0, x1, y1);
+    }
+    bool y_ok(std::size_t k, double y0, double y1, double r) const {
+      return y1 >= (*v)[k].p.y - r && y0 <= (*v)[k].p.y + r;
+    }
+  };
+  register_all(WallDist{&cfg.walls}, cfg.walls.size(), wall_start, wall_list);
+  register_all(VertexDist{&cfg.vertices}, cfg.vertices.size(), vertex_start, vertex_list);
+}
+
+// Does a disk of `species` at r overlap (deeper than tol) any disk, wall or
+// vertex, or lie outside a closed face?
+bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) const {
+  const double rad = radius[static_cast<std::size_t>(species)];
+  if (!(r.x >= cfg.xmin && r.x <= cfg.xmax && r.y >= cfg.ymin && r.y <= cfg.ymax)) return true;
+  const int c = cell_of(r.x, r.y);
+  const int cx = c % ncx, cy = c / ncx;
+  const Vec2 g = cfg.gravity;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      int x2 = cx + dx, y2 = cy + dy;
+      double shx = 0, shy = 0;
+      if (x2 < 0 || x2 >= ncx) {
+        if (!periodic_x) continue;
+        if (x2 < 0) { x2 += ncx; shx = -lx; } else { x2 -= ncx; shx = lx; }
+      }
+      if (y2 < 0 || y2 >= ncy) {
+        if (!periodic_y) continue;
+        if (y2 < 0) { y2 += ncy; shy = -ly; } else { y2 -= ncy; shy = ly; }
+      }
+      for (std::int32_t k = head[y2 * ncx + x2]; k >= 0; k = s[k].next) {
+        if (k == skip) continue;
+        const Particle& o = p[k];
+        const double dt = now - o.t;
+        const double ox = o.x + o.vx * dt + 0.5 * g.x * dt * dt + shx;
+        const double oy = o.y + o.vy * dt + 0.5 * g.y * dt * dt + shy;
+        const double sig = rad + radius[o.species] - tol;
+        if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
+      }
+    }
+  }
+  if (!wall_start.empty())
+    for (std::int32_t k = wall_start[c]; k < wall_start[c + 1]; ++k) {
+      const Wall& w = cfg.walls[wall_list[k]];
+      if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
+    }
+  if (!vertex_start.empty())
+    for (std::int32_t k = vertex_start[c]; k < vertex_start[c + 1]; ++k)
+      if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
+  return false;
+}
+
+std::int32_t Engine::Impl::add_slot(Vec2 r, Vec2 v, int species) {
+  std::int32_t i;
+  std::uint32_t count = 0;
+  if (!free_slots.empty()) {
+    i = free_slots.back();
+    free_slots.pop_back();
+    count = p[i].count + 1;  // stale predictions naming the slot stay stale
+  } else {
+    i = static_cast<std::int32_t>(p.size());
+    p.push_back({});
+    s.push_back({});
+    if (started) cal.grow(p.size());
+  }
+  p[i] = Particle{r.x, r.y, v.x, v.y, now, count, static_cast<std::uint16_t>(species), 1};
+  s[i] = detail::Slot{detail::kNever, detail::kNever, -detail::kNever, -1, 0, 0, -1,
+                      detail::EventType::none, 0};
+  cell_insert(i, cell_of(r.x, r.y));
+  integrate_energy();
+  energy += 0.5 * mass[static_cast<std::size_t>(species)] * norm2(v);
+  if (started) {
+    predict(i);
+    schedule(i);
+  }
+  return i;
+}
+
+Engine::Engine(EngineConfig cfg) : impl_(std::make_unique<Impl>()) { impl_->init(std::move(cfg)); }
+Engine::~Engine() = default;
+Engine::Engine(Engine&&) noexcept = default;
+Engine& Engine::operator=(Engine&&) noexcept = default;
+
+namespace {
+
+// Slot of the new disk, or -1 when it would overlap.
+std::int32_t add_checked(Engine::Impl& m, Vec2 r, Vec2 v, int species) {
+  if (species < 0 || static_cast<std::size_t>(species) >= m.ns) bad("unknown species");
+  if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(v.x) || !std::isfinite(v.y))
+    bad("non-finite particle state");
+  if (m.overlaps(r, species, kAddOverlapTolerance, -1)) return -1;
+  ++m.st.inserted;
+  return m.add_slot(r, v, species);
+}
+
+}  // namespace
+
+bool Engine::try_add(Vec2 r, Vec2 v, int species) { return add_checked(*impl_, r, v, species) >= 0; }
+
+std::size_t Engine::add(Vec2 r, Vec2 v, int species) {
+  const std::int32_t i = add_checked(*impl_, r, v, species);
+  if (i < 0) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "particle at (" << r.x << ", " << r.y
+        << ") overlaps another particle or a wall, or lies outside the box";
+    bad(msg.str());
+  }
+  return static_cast<std::size_t>(i);
+}
+
+}  // namespace granular

@@ -10,7 +10,11 @@ MeshParams parse_mesh(Section& s) {
   p.growth = s.number("growth", p.growth, {1.0, 10.0, true, false});
   p.target_cells = s.opt_number("target_cells", {10.0, 1e9, false, false});
   p.recombine = s.boolean("recombine", p.recombine);
+  p.h_body = s.opt_number("h_body", positive());
+  p.h_uniform = s.opt_number("h_uniform", positive());
   if (p.h_min > p.h_max) s.fail("h_min", "must not exceed h_max");
+  if (p.h_body && (*p.h_body < p.h_min || *p.h_body > p.h_max))
+    s.fail("h_body", "must lie between h_min and h_max");
   return p;
 }
 
@@ -22,6 +26,8 @@ void emit_mesh(YAML::Emitter& e, const MeshParams& p) {
   emit_kv(e, "growth", p.growth);
   emit_opt(e, "target_cells", p.target_cells);
   emit_kv(e, "recombine", p.recombine);
+  emit_opt(e, "h_body", p.h_body);
+  emit_opt(e, "h_uniform", p.h_uniform);
   e << YAML::EndMap;
 }
 

@@ -3,14 +3,16 @@
 
 namespace scene {
 
-// `mesh:` section. Lengths in body lengths.
+// `mesh:` section (meshgen, docs/meshgen.md). Lengths in body lengths.
 struct MeshParams {
-  double h_min = 0.01;             // cell size in the shock band
-  double h_max = 0.05;             // far-field cell size
-  std::optional<double> band_width;  // half-width of the fine band; default from shock CI
-  double growth = 1.2;             // bounded size ratio between neighbours
-  std::optional<double> target_cells;  // if set, scales h_min/h_max to meet it within 10%
-  bool recombine = true;           // quad-dominant
+  double h_min = 0.01;               // cell size in the shock band
+  double h_max = 0.05;               // far-field cell size
+  std::optional<double> band_width;  // half-width of the fine band; the shock's ci widens it
+  double growth = 1.2;               // bounded size ratio between neighbouring cells
+  std::optional<double> target_cells;  // if set, scales the sizes to meet it within 10%
+  bool recombine = true;             // quad-dominant (triangles otherwise)
+  std::optional<double> h_body;      // cell size at the body; default sqrt(h_min * h_max)
+  std::optional<double> h_uniform;   // cell size of the uniform grid; default h_min
 };
 
 }  // namespace scene

@@ -1,0 +1,49 @@
+#pragma once
+// meshgen: gmsh grids clustered at a predicted shock, and their uniform
+// twins, written as gmsh and OpenFOAM meshes (docs/meshgen.md).
+//
+// gmsh is a process-global library: generate_mesh serialises its calls
+// (one mesh at a time per process) and keeps gmsh initialised between them.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.hpp"
+#include "scene/vec2.hpp"
+
+namespace meshgen {
+
+struct MeshRequest {
+  bool uniform = false;
+  std::vector<scene::Vec2> shock_curve;  // accepted shock points in order (scene coordinates)
+  std::vector<double> shock_ci;          // 95% half-width per point along the normal; may be empty
+  std::optional<double> h_min, h_max;    // override scene.mesh (body lengths); uniform: h_min is its size
+  std::optional<double> target_cells;    // override scene.mesh.target_cells (wins over h_min/h_max)
+};
+
+struct MeshResult {
+  std::string kind;  // clustered | uniform
+  long cells = 0;
+  double min_cell_size = 0, max_cell_size = 0;  // mean edge length of a cell, scene coordinates
+  double max_non_orthogonality = 0, max_skewness = 0;  // checkMesh, degrees / -
+  bool check_mesh_ok = false;
+  double seconds = 0;  // gmsh: geometry, meshing, extrusion, statistics, .msh
+  nlohmann::json details;  // every other figure written to summary.json
+  nlohmann::json summary() const;
+};
+
+// Writes OUT/mesh.msh, OUT/constant/polyMesh/, OUT/system/controlDict,
+// OUT/log.gmshToFoam, OUT/log.checkMesh, OUT/summary.json and OUT/mesh.png,
+// OUT/mesh_zoom.png (plots are best effort). InputError on a bad request
+// (clustered without a shock curve, a shock wholly outside the flow),
+// RunError when gmsh or OpenFOAM fail or a target count cannot be met.
+MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir);
+
+// Reads shock.csv (columns by name: shock_x, shock_y, accepted, optional
+// ci). InputError on a missing or empty file, a missing column, a bad
+// number, or no accepted rows.
+MeshRequest request_from_shock_csv(const std::string& path);
+
+}  // namespace meshgen

@@ -1,0 +1,80 @@
+#pragma once
+// Target cell size h(x, y) of the clustered grid, and the shock curve it is
+// built round (clipped to the flow region). Pure geometry: no gmsh here, so
+// it can be tested and integrated (cell-count estimates) on its own.
+//
+//   h = min(h_shock, h_body, h_max)
+//   h_shock = h_min                             within the band, d <= w
+//           = h_min + (growth - 1) (d - w)      outside it
+//   h_body  = h_body0 + (growth - 1) d_body
+// A size that grows by (growth - 1) per unit distance makes each cell
+// `growth` times its neighbour: h(d + h) = h (1 + growth - 1).
+#include <vector>
+
+#include "meshgen/fluid_region.hpp"
+#include "scene/vec2.hpp"
+
+namespace meshgen {
+
+// Polyline runs of the shock curve inside the flow region, with the band
+// half-width at each vertex.
+struct ShockRun {
+  std::vector<scene::Vec2> points;
+  std::vector<double> half_width;
+};
+
+// Clips the curve (points in order, half-width per point) to the region:
+// parts outside the rectangle or inside the body are dropped, segments cut
+// where they cross (to `resolution`). Empty when nothing is inside.
+std::vector<ShockRun> clip_shock(const std::vector<scene::Vec2>& curve, const std::vector<double>& half_width,
+                                 const FluidRegion& region, double resolution);
+
+struct SizeParams {
+  double h_min = 0.01, h_max = 0.05, h_body = 0.02, growth = 1.2;
+};
+
+// Segments in a bucket grid, for nearest-distance queries up to a cut-off.
+class SegmentIndex {
+ public:
+  SegmentIndex() = default;
+  // values: one per point (a band half-width, or empty for zeros).
+  void add_polyline(const std::vector<scene::Vec2>& pts, const std::vector<double>& values);
+  // After the last add: excesses beyond `cutoff` need not be exact.
+  void build(double cutoff);
+  // min over segments of (distance - value interpolated at the nearest
+  // point): how far p lies outside the band; +inf beyond the cut-off.
+  double excess(scene::Vec2 p) const;
+
+ private:
+  struct Seg {
+    scene::Vec2 a, b;
+    double va, vb;
+  };
+  std::vector<Seg> segs_;
+  std::vector<std::vector<int>> cells_;
+  double x0_ = 0, y0_ = 0, cell_ = 1, cutoff_ = 1;
+  int nx_ = 0, ny_ = 0;
+};
+
+class SizeField {
+ public:
+  // Uniform field.
+  explicit SizeField(double h);
+  // Clustered field round the clipped shock runs and the body outline.
+  SizeField(const SizeParams& p, const std::vector<ShockRun>& shock, const std::vector<scene::Vec2>& body_polyline);
+  double operator()(scene::Vec2 p) const;
+  // Whether p lies in the fine band (d <= w of the nearest shock point).
+  bool in_band(scene::Vec2 p) const;
+  bool uniform() const { return uniform_; }
+  const SizeParams& params() const { return p_; }
+
+ private:
+  bool uniform_ = true;
+  SizeParams p_;
+  SegmentIndex shock_, body_;
+};
+
+// Estimated number of cells sum(dA / h^2) over the region, on a fine lattice.
+double estimate_cells(const SizeField& f, const FluidRegion& region);
+
+}  // namespace meshgen

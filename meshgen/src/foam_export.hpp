@@ -1,0 +1,30 @@
+#pragma once
+// OpenFOAM side of meshgen (private): gmshToFoam, patch types, checkMesh.
+// Each application runs in bash -c after sourcing OpenFOAM's bashrc and logs
+// to CASE/log.<application>, as OpenFOAM's RunFunctions do.
+#include <map>
+#include <string>
+
+namespace meshgen {
+
+struct CheckMeshReport {
+  bool ok = false;                   // "Mesh OK."
+  double max_non_orthogonality = 0;  // degrees
+  double max_skewness = 0;
+  long cells = 0;
+  std::string failures;              // the lines starting with *** when not ok
+};
+
+// Minimal system/{controlDict,fvSchemes,fvSolution}: gmshToFoam and
+// checkMesh refuse a case without them.
+void write_control_dict(const std::string& case_dir);
+// CASE/mesh.msh -> CASE/constant/polyMesh. RunError naming the log on failure.
+void run_gmsh_to_foam(const std::string& case_dir);
+// Rewrites constant/polyMesh/boundary with a type (and group) per patch.
+// RunError when a patch is missing or an unnamed patch has faces.
+void set_patch_types(const std::string& case_dir, const std::map<std::string, std::string>& types);
+CheckMeshReport run_check_mesh(const std::string& case_dir);
+// Parses checkMesh output (exposed for tests).
+CheckMeshReport parse_check_mesh(const std::string& log);
+
+}  // namespace meshgen

@@ -1,0 +1,315 @@
+// generate_mesh: sizes -> gmsh -> OpenFOAM -> checks -> summary, staged in a
+// scratch folder inside OUT and moved into place only when complete.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <unistd.h>
+
+#include "foam_export.hpp"
+#include "gmsh_mesher.hpp"
+#include "meshgen/fluid_region.hpp"
+#include "meshgen/mesh.hpp"
+#include "meshgen/size_field.hpp"
+#include "plot.hpp"
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+
+namespace meshgen {
+
+using scene::Vec2;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Band half-width without band_width or ci, and its floor, in cells of h_min:
+// the band always holds a few fine cells across even for a sure prediction.
+constexpr double kDefaultBandCells = 3.0;
+constexpr double kMinBandCells = 2.0;
+// Target cell count: accepted within kTargetTolerance (the 10%); a
+// retry is made beyond kTargetRetry, up to kMaxTargetAttempts meshes.
+constexpr double kTargetTolerance = 0.10;
+constexpr double kTargetRetry = 0.05;
+constexpr int kMaxTargetAttempts = 4;
+// Cells of a frontal quad mesh cover about h^2 each; a triangle about h^2/2
+// (starting guesses, corrected from the first mesh).
+constexpr double kCellsPerH2Quads = 1.0;
+constexpr double kCellsPerH2Triangles = 2.0;
+// Clipping the shock curve: crossings located to this fraction of h_min.
+constexpr double kClipResolutionCells = 0.25;
+// Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
+constexpr double kZoomCells = 12.0;
+constexpr double kZoomBands = 3.0;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+nlohmann::json domain_json(const scene::Domain& d) {
+  return {{"xmin", d.xmin}, {"xmax", d.xmax}, {"ymin", d.ymin}, {"ymax", d.ymax}, {"symmetric", d.symmetric}};
+}
+
+double cell_size(const PlaneMesh& m, const std::array<int, 4>& c) {
+  const int n = c[3] < 0 ? 3 : 4;
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k)
+    sum += scene::norm(m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>((k + 1) % n)])] -
+                       m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]);
+  return sum / n;
+}
+
+Vec2 centroid(const PlaneMesh& m, const std::array<int, 4>& c) {
+  const int n = c[3] < 0 ? 3 : 4;
+  Vec2 s;
+  for (int k = 0; k < n; ++k) s += m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])];
+  return s / n;
+}
+
+// Everything that depends on the size scale factor.
+struct Sizing {
+  SizeParams params;
+  double uniform_h = 0;
+  std::vector<ShockRun> runs;
+  double band_min = 0, band_max = 0;
+};
+
+struct Plan {
+  bool uniform = false;
+  SizeParams base;          // clustered sizes at scale 1 (scene coordinates)
+  double uniform_h = 0;     // uniform size at scale 1
+  std::optional<double> band_width;  // scene coordinates
+  std::vector<Vec2> curve;
+  std::vector<double> ci;
+  std::optional<double> target;
+
+  Sizing at(double scale, const FluidRegion& region) const {
+    Sizing z;
+    z.params = base;
+    z.params.h_min *= scale;
+    z.params.h_max *= scale;
+    z.params.h_body *= scale;
+    z.uniform_h = uniform_h * scale;
+    std::vector<double> w(curve.size());
+    const double floor = kMinBandCells * z.params.h_min;
+    const double def = band_width.value_or(kDefaultBandCells * z.params.h_min);
+    for (std::size_t i = 0; i < curve.size(); ++i) {
+      double wi = std::max(def, floor);
+      if (i < ci.size() && std::isfinite(ci[i])) wi = std::max(wi, ci[i]);
+      w[i] = wi;
+    }
+    if (!curve.empty()) {
+      z.band_min = *std::min_element(w.begin(), w.end());
+      z.band_max = *std::max_element(w.begin(), w.end());
+    }
+    z.runs = clip_shock(curve, w, region, kClipResolutionCells * z.params.h_min);
+    return z;
+  }
+  SizeField field(const Sizing& z, const FluidRegion& region) const {
+    if (uniform) return SizeField(z.uniform_h);
+    return SizeField(z.params, z.runs, region.body.polyline);
+  }
+};
+
+// Scale factor whose estimated count (times the calibration) hits the target.
+double solve_scale(const Plan& plan, const FluidRegion& region, double target, double calibration) {
+  double lo = 1e-3, hi = 1e3;  // wide bracket on a monotone (decreasing) count
+  for (int it = 0; it < 40; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    const double n = calibration * estimate_cells(plan.field(plan.at(mid, region), region), region);
+    (n > target ? lo : hi) = mid;
+    if (hi / lo < 1.002) break;
+  }
+  return std::sqrt(lo * hi);
+}
+
+void move_into(const fs::path& from, const fs::path& to) {
+  if (!fs::exists(from)) return;
+  if (fs::is_directory(to)) fs::remove_all(to);
+  fs::create_directories(to.parent_path());
+  fs::rename(from, to);
+}
+
+}  // namespace
+
+nlohmann::json MeshResult::summary() const {
+  nlohmann::json j = details;
+  j["kind"] = kind;
+  j["cells"] = cells;
+  j["min_cell_size"] = min_cell_size;
+  j["max_cell_size"] = max_cell_size;
+  j["max_non_orthogonality"] = max_non_orthogonality;
+  j["max_skewness"] = max_skewness;
+  j["check_mesh_ok"] = check_mesh_ok;
+  j["seconds"] = seconds;
+  return j;
+}
+
+MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir) {
+  const auto t_total = std::chrono::steady_clock::now();
+  const FluidRegion region = make_fluid_region(s);
+  const double L = region.length_scale;
+  const scene::MeshParams& mp = s.mesh;
+  const std::string where = (s.source_file.empty() ? s.name : s.source_file) + ": mesh: ";
+
+  Plan plan;
+  plan.uniform = r.uniform;
+  plan.base.h_min = r.h_min.value_or(mp.h_min) * L;
+  plan.base.h_max = r.h_max.value_or(mp.h_max) * L;
+  if (r.h_min && !r.h_max) plan.base.h_max = std::max(plan.base.h_max, plan.base.h_min);
+  if (r.h_max && !r.h_min) plan.base.h_min = std::min(plan.base.h_min, plan.base.h_max);
+  if (!(plan.base.h_min > 0) || plan.base.h_min > plan.base.h_max)
+    throw scene::InputError(where + "h_min must be positive and not exceed h_max");
+  plan.base.h_body = std::clamp(mp.h_body ? *mp.h_body * L : std::sqrt(plan.base.h_min * plan.base.h_max),
+                                plan.base.h_min, plan.base.h_max);
+  plan.base.growth = mp.growth;
+  plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
+  if (mp.band_width) plan.band_width = *mp.band_width * L;
+  plan.curve = r.shock_curve;
+  plan.ci = r.shock_ci;
+  plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
+  if (!r.uniform && r.shock_curve.empty())
+    throw scene::InputError(where + "a clustered grid needs a shock curve (meshgen --shock shock.csv)");
+
+  const fs::path out(out_dir);
+  fs::create_directories(out);
+  const fs::path stage = out / (".meshgen-staging-" + std::to_string(::getpid()));
+  fs::remove_all(stage);
+  fs::create_directories(stage);
+
+  GmshJob job;
+  job.recombine = mp.recombine;
+  job.msh_path = (stage / "mesh.msh").string();
+
+  double scale = 1.0, calibration = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
+  Sizing sizing;
+  PlaneMesh mesh;
+  double gmsh_seconds = 0.0, estimate = 0.0;
+  int attempts = 0;
+  for (;;) {
+    ++attempts;
+    if (plan.target) scale = solve_scale(plan, region, *plan.target, calibration);
+    sizing = plan.at(scale, region);
+    if (!plan.curve.empty() && sizing.runs.empty())
+      throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
+                              "beyond the domain)");
+    const SizeField field = plan.field(sizing, region);
+    estimate = estimate_cells(field, region);
+    job.thickness = plan.uniform ? sizing.uniform_h : sizing.params.h_max;
+    const auto t0 = std::chrono::steady_clock::now();
+    mesh = mesh_with_gmsh(region, field, job);
+    gmsh_seconds = seconds_since(t0);
+    if (!plan.target) break;
+    const double n = static_cast<double>(mesh.volume_cells);
+    const double miss = std::abs(n / *plan.target - 1.0);
+    if (miss <= kTargetRetry) break;
+    if (attempts >= kMaxTargetAttempts) {
+      if (miss <= kTargetTolerance) break;
+      throw scene::RunError(where + "target_cells " + std::to_string(static_cast<long>(*plan.target)) +
+                            " not met within 10% after " + std::to_string(attempts) + " meshes (last " +
+                            std::to_string(mesh.volume_cells) + ")");
+    }
+    calibration = n / estimate;
+  }
+
+  MeshResult res;
+  res.kind = plan.uniform ? "uniform" : "clustered";
+  res.cells = mesh.volume_cells;
+  res.seconds = gmsh_seconds;
+  double hmin = std::numeric_limits<double>::infinity(), hmax = 0.0, band_max = 0.0;
+  long band_cells = 0;
+  const SizeField band_field(sizing.params, sizing.runs, region.body.polyline);
+  for (const auto& c : mesh.cells) {
+    const double h = cell_size(mesh, c);
+    hmin = std::min(hmin, h);
+    hmax = std::max(hmax, h);
+    if (!sizing.runs.empty() && band_field.in_band(centroid(mesh, c))) {
+      ++band_cells;
+      band_max = std::max(band_max, h);
+    }
+  }
+  res.min_cell_size = hmin;
+  res.max_cell_size = hmax;
+
+  write_control_dict(stage.string());
+  run_gmsh_to_foam(stage.string());
+  const std::map<std::string, std::string> types = {
+      {"inlet", "patch"}, {"outlet", "patch"}, {"top", "patch"},
+      {"bottom", region.domain.symmetric ? "symmetryPlane" : "patch"}, {"body", "wall"},
+      {"frontAndBack", "empty"}};
+  set_patch_types(stage.string(), types);
+  const CheckMeshReport check = run_check_mesh(stage.string());
+  res.max_non_orthogonality = check.max_non_orthogonality;
+  res.max_skewness = check.max_skewness;
+  res.check_mesh_ok = check.ok;
+  if (check.cells != res.cells)
+    throw scene::RunError("checkMesh counts " + std::to_string(check.cells) + " cells, gmsh " + std::to_string(res.cells));
+
+  nlohmann::json pngs = nlohmann::json::array(), plot_error = nullptr;
+  try {
+    PlotWindow zoom;
+    zoom.half = std::max(kZoomCells * sizing.params.h_min, kZoomBands * sizing.band_max);
+    if (plan.uniform) zoom.half = std::max(kZoomCells * sizing.uniform_h, kZoomBands * sizing.band_max);
+    zoom.center = region.body.nose;
+    if (!sizing.runs.empty()) {
+      const auto& run = *std::max_element(sizing.runs.begin(), sizing.runs.end(),
+                                          [](const ShockRun& a, const ShockRun& b) { return a.points.size() < b.points.size(); });
+      zoom.center = run.points[run.points.size() / 2];
+    }
+    for (const std::string& f : plot_mesh(mesh, sizing.runs, region, zoom, s.name + " " + res.kind, stage.string()))
+      pngs.push_back(f);
+  } catch (const std::exception& e) {
+    plot_error = e.what();
+  }
+
+  nlohmann::json& j = res.details;
+  j["scene"] = s.name;
+  j["length_unit"] = "scene coordinates (sizes below); mesh parameters are in body lengths";
+  j["body_length"] = L;
+  j["quads"] = mesh.quads;
+  j["triangles"] = mesh.triangles;
+  j["hexahedra"] = mesh.quads;
+  j["prisms"] = mesh.triangles;
+  j["h_min"] = plan.uniform ? sizing.uniform_h : sizing.params.h_min;
+  j["h_max"] = plan.uniform ? sizing.uniform_h : sizing.params.h_max;
+  j["h_body"] = plan.uniform ? sizing.uniform_h : sizing.params.h_body;
+  j["growth"] = sizing.params.growth;
+  j["thickness"] = job.thickness;
+  j["band_half_width_min"] = sizing.runs.empty() ? nlohmann::json(nullptr) : nlohmann::json(sizing.band_min);
+  j["band_half_width_max"] = sizing.runs.empty() ? nlohmann::json(nullptr) : nlohmann::json(sizing.band_max);
+  j["band_cells"] = band_cells;
+  j["band_max_cell_size"] = band_cells ? nlohmann::json(band_max) : nlohmann::json(nullptr);
+  j["target_cells"] = plan.target ? nlohmann::json(*plan.target) : nlohmann::json(nullptr);
+  j["estimated_cells"] = estimate;
+  j["mesh_attempts"] = attempts;
+  j["shock_points"] = plan.curve.size();
+  std::size_t kept = 0;
+  for (const ShockRun& run : sizing.runs) kept += run.points.size();
+  j["shock_points_clipped"] = kept;
+  j["shock_runs"] = sizing.runs.size();
+  j["domain"] = domain_json(region.domain);
+  j["scene_domain"] = domain_json(region.scene_domain);
+  j["outlet_moved"] = region.outlet_moved;
+  j["patches"] = types;
+  j["recombine"] = mp.recombine;
+  j["check_mesh_failures"] = check.failures;
+  j["png"] = pngs;
+  j["plot_error"] = plot_error;
+
+  // Move the finished case into place, then the summary last.
+  move_into(stage / "mesh.msh", out / "mesh.msh");
+  move_into(stage / "constant" / "polyMesh", out / "constant" / "polyMesh");
+  for (const char* f : {"controlDict", "fvSchemes", "fvSolution"}) move_into(stage / "system" / f, out / "system" / f);
+  for (const char* f : {"log.gmshToFoam", "log.checkMesh", "mesh.png", "mesh_zoom.png"}) {
+    if (fs::exists(stage / f)) {
+      fs::remove(out / f);
+      fs::rename(stage / f, out / f);
+    }
+  }
+  fs::remove_all(stage);
+  j["seconds_total"] = seconds_since(t_total);
+  scene::write_json_atomic((out / "summary.json").string(), res.summary());
+  return res;
+}
+
+}  // namespace meshgen

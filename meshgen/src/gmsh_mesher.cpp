@@ -1,0 +1,173 @@
+#include "gmsh_mesher.hpp"
+
+#include <gmsh.h>
+
+#include <map>
+#include <mutex>
+#include <unordered_map>
+
+#include "scene/errors.hpp"
+
+namespace meshgen {
+
+using scene::Vec2;
+
+namespace {
+
+// gmsh element types: 3-node triangle, 4-node quadrangle, 6-node prism,
+// 8-node hexahedron.
+constexpr int kTriangle = 2, kQuad = 3;
+// Relative distance (body lengths) under which two boundary points are one.
+constexpr double kSamePoint = 1e-10;
+// Frontal-Delaunay, recombined into quads by Blossom. (Frontal-Delaunay for
+// Quads, algorithm 8, would pair up better but segfaults in Debian's gmsh
+// 4.8.4 on every surface we tried, with or without a size callback.)
+constexpr int kAlgorithmQuads = 6, kAlgorithmTriangles = 6;
+constexpr int kBlossom = 1;
+constexpr int kSmoothingSteps = 5;
+
+// gmsh keeps global state: initialise once per process, one mesh at a time.
+std::mutex& gmsh_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+void ensure_initialized() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    gmsh::initialize(0, nullptr, false);  // no user config files: deterministic
+    gmsh::option::setNumber("General.Terminal", 0);
+  });
+}
+
+void set_options(const GmshJob& job) {
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 1);
+  gmsh::option::setNumber("General.NumThreads", 1);
+  gmsh::option::setNumber("Mesh.Algorithm", job.recombine ? kAlgorithmQuads : kAlgorithmTriangles);
+  gmsh::option::setNumber("Mesh.RecombineAll", job.recombine ? 1 : 0);
+  gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kBlossom);
+  gmsh::option::setNumber("Mesh.Smoothing", kSmoothingSteps);
+  // Sizes come from the callback alone.
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.MshFileVersion", 2.2);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  gmsh::option::setNumber("Mesh.SaveAll", 0);
+}
+
+class PointTable {
+ public:
+  explicit PointTable(double eps) : eps_(eps) {}
+  int get(Vec2 p) {
+    for (const auto& [q, tag] : pts_)
+      if (scene::norm(q - p) <= eps_) return tag;
+    const int tag = gmsh::model::geo::addPoint(p.x, p.y, 0.0);
+    pts_.emplace_back(p, tag);
+    return tag;
+  }
+
+ private:
+  double eps_;
+  std::vector<std::pair<Vec2, int>> pts_;
+};
+
+PlaneMesh read_plane(int surface, int volume) {
+  PlaneMesh m;
+  std::vector<std::size_t> tags;
+  std::vector<double> coord, param;
+  gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, true, false);
+  std::unordered_map<std::size_t, int> index;
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    index[tags[i]] = static_cast<int>(i);
+    m.nodes.push_back({coord[3 * i], coord[3 * i + 1]});
+  }
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> elems, nodes;
+  gmsh::model::mesh::getElements(types, elems, nodes, 2, surface);
+  for (std::size_t t = 0; t < types.size(); ++t) {
+    const int per = types[t] == kQuad ? 4 : types[t] == kTriangle ? 3 : 0;
+    if (per == 0) throw scene::RunError("gmsh produced 2D elements of unexpected type " + std::to_string(types[t]));
+    for (std::size_t e = 0; e < elems[t].size(); ++e) {
+      std::array<int, 4> c{-1, -1, -1, -1};
+      for (int k = 0; k < per; ++k) c[static_cast<std::size_t>(k)] = index.at(nodes[t][e * per + k]);
+      m.cells.push_back(c);
+    }
+    (per == 4 ? m.quads : m.triangles) += static_cast<long>(elems[t].size());
+  }
+  gmsh::model::mesh::getElements(types, elems, nodes, 3, volume);
+  for (const auto& e : elems) m.volume_cells += static_cast<long>(e.size());
+  return m;
+}
+
+PlaneMesh run(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
+  gmsh::clear();
+  gmsh::model::add("meshgen");
+  set_options(job);
+  PointTable points(kSamePoint * region.length_scale);
+  std::vector<int> loop_tags;
+  std::vector<Patch> curve_patch;  // in the order gmsh reports lateral surfaces
+  for (const auto& loop : region.loops) {
+    std::vector<int> curves;
+    for (const BoundaryCurve& c : loop) {
+      const int a = points.get(c.a), b = points.get(c.b);
+      if (c.is_arc) {
+        const int centre = gmsh::model::geo::addPoint(c.center.x, c.center.y, 0.0);
+        curves.push_back(gmsh::model::geo::addCircleArc(a, centre, b));
+      } else {
+        curves.push_back(gmsh::model::geo::addLine(a, b));
+      }
+      curve_patch.push_back(c.patch);
+    }
+    loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
+  }
+  const int surface = gmsh::model::geo::addPlaneSurface(loop_tags);
+  gmsh::vectorpair out;
+  gmsh::model::geo::extrude({{2, surface}}, 0.0, 0.0, job.thickness, out, {1}, {}, true);
+  gmsh::model::geo::synchronize();
+  if (out.size() != 2 + curve_patch.size())
+    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) + " entities, expected " +
+                          std::to_string(2 + curve_patch.size()));
+  const int top_surface = out[0].second, volume = out[1].second;
+  std::map<Patch, std::vector<int>> by_patch;
+  for (std::size_t i = 0; i < curve_patch.size(); ++i) by_patch[curve_patch[i]].push_back(out[2 + i].second);
+  for (const auto& [patch, tags] : by_patch) {
+    const int g = gmsh::model::addPhysicalGroup(2, tags);
+    gmsh::model::setPhysicalName(2, g, patch_name(patch));
+  }
+  const int fb = gmsh::model::addPhysicalGroup(2, {surface, top_surface});
+  gmsh::model::setPhysicalName(2, fb, "frontAndBack");
+  const int fluid = gmsh::model::addPhysicalGroup(3, {volume});
+  gmsh::model::setPhysicalName(3, fluid, "fluid");
+
+  gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double) { return size({x, y}); });
+  gmsh::model::mesh::generate(3);
+  gmsh::model::mesh::removeSizeCallback();
+  PlaneMesh m = read_plane(surface, volume);
+  gmsh::write(job.msh_path);
+  gmsh::clear();
+  return m;
+}
+
+}  // namespace
+
+PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
+  const std::lock_guard<std::mutex> lock(gmsh_mutex());
+  ensure_initialized();
+  try {
+    return run(region, size, job);
+  } catch (const scene::RunError&) {
+    gmsh::model::mesh::removeSizeCallback();  // it refers to `size`, which is going away
+    gmsh::clear();
+    throw;
+  } catch (...) {
+    std::string last;
+    gmsh::logger::getLastError(last);
+    gmsh::model::mesh::removeSizeCallback();
+    gmsh::clear();
+    throw scene::RunError("gmsh failed: " + (last.empty() ? std::string("unknown error") : last));
+  }
+}
+
+}  // namespace meshgen

@@ -78,15 +78,27 @@ Lattice read_vti(const std::string& path) {
   const std::regex image(
       R"(<ImageData\s+WholeExtent=\"0 (\d+) 0 (\d+) 0 0\"\s+Origin=\"([^ ]+) ([^ ]+) [^\"]+\"\s+Spacing=\"([^ ]+) ([^ ]+) [^\"]+\")");
   std::smatch m;
-  if (!std::regex_search(text, m, image)) throw bad("no <ImageData WholeExtent/Origin/Spacing> header");
+  // Only the header is searched (std::regex is slow and recursive on long text).
+  const std::string head = text.substr(0, text.find("<DataArray"));
+  if (!std::regex_search(head, m, image)) throw bad("no <ImageData WholeExtent/Origin/Spacing> header");
   Lattice lat(std::stoi(m[1]), std::stoi(m[2]), std::stod(m[3]), std::stod(m[4]), std::stod(m[5]),
               std::stod(m[6]));
   if (lat.nx < 1 || lat.ny < 1) throw bad("empty extent");
   const std::size_t n = static_cast<std::size_t>(lat.nx) * static_cast<std::size_t>(lat.ny);
-  const std::regex array(R"(<DataArray[^>]*Name=\"([^\"]+)\"[^>]*>([^<]*)</DataArray>)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), array); it != std::sregex_iterator(); ++it) {
-    const std::string name = (*it)[1];
-    std::istringstream is((*it)[2].str());
+  // DataArrays are found by plain search: std::regex recurses once per
+  // character it matches and overflows the stack on large arrays.
+  const std::regex name_attr(R"(Name=\"([^\"]+)\")");
+  for (std::size_t pos = text.find("<DataArray"); pos != std::string::npos; pos = text.find("<DataArray", pos)) {
+    const std::size_t tag_end = text.find('>', pos);
+    if (tag_end == std::string::npos) throw bad("unterminated <DataArray> tag");
+    const std::string tag = text.substr(pos, tag_end - pos);
+    std::smatch nm;
+    if (!std::regex_search(tag, nm, name_attr)) throw bad("<DataArray> without a Name");
+    const std::string name = nm[1];
+    const std::size_t close = text.find("</DataArray>", tag_end);
+    if (close == std::string::npos) throw bad("field '" + name + "': no </DataArray>");
+    std::istringstream is(text.substr(tag_end + 1, close - tag_end - 1));
+    pos = close;
     std::vector<double> v;
     v.reserve(n);
     std::string tok;

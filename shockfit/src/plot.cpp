@@ -172,7 +172,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
       << "set title \"" << s.name << ": field " << r.field << ", shock " << r.shock << "\" noenhanced\n"
       << "set size ratio -1\nset xrange [" << num(d.xmin) << ":" << num(d.xmax) << "]\nset yrange [" << num(d.ymin)
       << ":" << num(d.ymax) << "]\n"
-      << "set xlabel 'x / L'\nset ylabel 'y / L'\nset palette rgb 33,13,10\nset datafile missing 'NaN'\n"
+      << "set xlabel 'x / L'\nset ylabel 'y / L'\nset palette rgb 33,13,10\n"
       << "set key bottom right opaque\n"
       << "plot '" << f_field.string() << "' using 1:2:3 with image notitle, \\\n"
       << "  '" << f_body.string() << "' using 1:2 with lines lw 2 lc rgb 'black' title 'body', \\\n"

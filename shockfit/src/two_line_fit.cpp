@@ -14,12 +14,18 @@ constexpr double kMadToSigma = 1.4826;
 // A profile with no noise at all (exact synthetic data) still needs a
 // positive noise scale for the tests below; relative to the profile's size.
 constexpr double kNoiseFloorRel = 1e-9;
-// A jump must explain the profile much better than one smooth curve: the two
-// lines' squared error must be below this fraction of a single quadratic's.
-// Smooth subsonic profiles (and pure noise) give ratios near 1; a shock, a
-// ratio near (noise / jump)^2.
-constexpr double kSmoothRejectRatio = 0.5;
+// A jump must explain the profile near it better than one smooth curve can:
+// over kLocalWindows shock windows either side of the breakpoint (the shock
+// window itself left out, as in the line fits), the two lines' squared error
+// must undercut one cubic's by more than noise_factor^2 noise variances. A
+// smooth profile (subsonic flow, an expansion) is a cubic on that scale, so
+// the two lines gain nothing; noise alone gains a few variances; a jump J
+// gains of order 0.1 J^2 per sample.
+constexpr double kLocalWindows = 4.0;
+constexpr int kMinLocalPoints = 8;
 constexpr int kBisectIterations = 100;
+// Fewest samples that define a line on either side of the shock window.
+constexpr int kMinLinePoints = 4;
 
 struct Sums {
   std::vector<double> n, t, f, tt, tf, ff;
@@ -53,17 +59,21 @@ Line fit_line(const std::vector<double>& t, const std::vector<double>& f, int i,
   return l;
 }
 
-double quadratic_sse(const std::vector<double>& t, const std::vector<double>& f) {
-  const int n = static_cast<int>(t.size());
-  const double t0 = 0.5 * (t.front() + t.back()), scale = std::max(0.5 * (t.back() - t.front()), 1e-300);
-  Eigen::MatrixXd X(n, 3);
+// Squared error of one cubic fitted to the samples `idx`: the smooth
+// alternative to a jump, with as many parameters as the two lines.
+double cubic_sse(const std::vector<double>& t, const std::vector<double>& f, const std::vector<int>& idx) {
+  const auto n = static_cast<Eigen::Index>(idx.size());
+  const double t0 = 0.5 * (t[idx.front()] + t[idx.back()]);
+  const double scale = std::max(0.5 * (t[idx.back()] - t[idx.front()]), 1e-300);
+  Eigen::MatrixXd X(n, 4);
   Eigen::VectorXd y(n);
-  for (int k = 0; k < n; ++k) {
-    const double u = (t[k] - t0) / scale;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double u = (t[idx[k]] - t0) / scale;
     X(k, 0) = 1.0;
     X(k, 1) = u;
     X(k, 2) = u * u;
-    y(k) = f[k];
+    X(k, 3) = u * u * u;
+    y(k) = f[idx[k]];
   }
   const Eigen::VectorXd c = X.colPivHouseholderQr().solve(y);
   return (X * c - y).squaredNorm();
@@ -116,21 +126,34 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   r.valid = true;
   r.breakpoint = k;
   r.t_break = 0.5 * (t[k - 1] + t[k]);
+  const double lo = std::max(t.front(), r.t_break - opt.window);
+  const double hi = std::min(t.back(), r.t_break + opt.window);
+  // The breakpoint search puts half the transition into each segment, which
+  // tilts both lines towards the jump. Refit each line on its own side of the
+  // shock window only, so the lines are the states on either side of the
+  // shock. A jump too close to either end of the profile to leave such a
+  // line is not measured.
+  const int in_end = static_cast<int>(std::lower_bound(t.begin(), t.end(), lo) - t.begin());
+  const int out_begin = static_cast<int>(std::upper_bound(t.begin(), t.end(), hi) - t.begin());
+  const bool clear = in_end >= kMinLinePoints && n - out_begin >= kMinLinePoints;
   Eigen::Matrix2d inv_in, inv_out;
-  r.inner = fit_line(t, f, 0, k, inv_in);
-  r.outer = fit_line(t, f, k, n, inv_out);
+  r.inner = clear ? fit_line(t, f, 0, in_end, inv_in) : fit_line(t, f, 0, k, inv_in);
+  r.outer = clear ? fit_line(t, f, out_begin, n, inv_out) : fit_line(t, f, k, n, inv_out);
 
-  std::vector<double> res(static_cast<std::size_t>(n));
+  // Noise from the residuals outside the window (the transition is signal).
+  std::vector<double> res;
   double sse = 0.0, fmax = 0.0;
   for (int i = 0; i < n; ++i) {
     const double e = f[i] - (i < k ? r.inner.at(t[i]) : r.outer.at(t[i]));
-    res[i] = std::abs(e);
+    if (t[i] < lo || t[i] > hi) res.push_back(std::abs(e));
     sse += e * e;
     fmax = std::max(fmax, std::abs(f[i]));
   }
   r.rms = std::sqrt(sse / n);
-  std::nth_element(res.begin(), res.begin() + n / 2, res.end());
-  r.noise = std::max(kMadToSigma * res[n / 2], kNoiseFloorRel * std::max(fmax, 1e-300));
+  if (res.empty()) return r;
+  const auto mid = res.begin() + static_cast<long>(res.size() / 2);
+  std::nth_element(res.begin(), mid, res.end());
+  r.noise = std::max(kMadToSigma * *mid, kNoiseFloorRel * std::max(fmax, 1e-300));
 
   // Neighbouring samples share lattice cells, so they are not independent:
   // inflate the variances by the number of samples per independent one.
@@ -145,8 +168,6 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   const double se_step = std::sqrt(r.inner.var_at(r.t_break) + r.outer.var_at(r.t_break));
   const double db = r.inner.b - r.outer.b;
   const double se_db = std::sqrt(r.inner.var_b + r.outer.var_b);
-  const double lo = std::max(t.front(), r.t_break - opt.window);
-  const double hi = std::min(t.back(), r.t_break + opt.window);
 
   // Where the lines cross inside the window the profile has a kink (a shock
   // resolved as a ramp): the intersection is the shock. Where they do not,
@@ -200,8 +221,18 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   const double k_sig = opt.noise_factor;
   const bool step_jump = std::abs(r.step) > k_sig * r.noise && std::abs(r.step) > k_sig * se_step;
   const bool slope_jump = std::abs(db) * opt.window > k_sig * r.noise && std::abs(db) > k_sig * se_db;
-  const bool not_smooth = sse < kSmoothRejectRatio * quadratic_sse(t, f);
-  r.accepted = (step_jump || slope_jump) && not_smooth;
+  const double llo = r.t_break - kLocalWindows * opt.window, lhi = r.t_break + kLocalWindows * opt.window;
+  std::vector<int> local;
+  double local_sse = 0.0;
+  for (int i = 0; i < n; ++i) {
+    if (t[i] < llo || t[i] > lhi || (t[i] >= lo && t[i] <= hi)) continue;
+    local.push_back(i);
+    const double e = f[i] - (i < k ? r.inner.at(t[i]) : r.outer.at(t[i]));
+    local_sse += e * e;
+  }
+  const bool not_smooth = static_cast<int>(local.size()) >= kMinLocalPoints &&
+                          cubic_sse(t, f, local) - local_sse > k_sig * k_sig * var_scale;
+  r.accepted = clear && (step_jump || slope_jump) && not_smooth;
   return r;
 }
 

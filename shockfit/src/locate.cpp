@@ -57,13 +57,7 @@ StationFit fit_station(const scene::Lattice& lat, const std::string& field, cons
   sf.shock = {kNaN, kNaN};
   sf.distance = sf.ci = sf.fit_error = kNaN;
   const Profile prof = sample_profile(lat, field, d, origin, normal, p.min_samples);
-  TwoLineOptions opt;
-  opt.window = p.window * prof.spacing;
-  opt.correlation = prof.spacing / std::max(prof.step, 1e-300);
-  opt.noise_factor = p.noise_factor;
-  // Each line spans at least the shock window, so a line never fits the
-  // jump alone.
-  opt.min_segment = std::max(opt.min_segment, static_cast<int>(std::ceil(p.window * opt.correlation)));
+  const TwoLineOptions opt = two_line_options(prof, p);
   const TwoLineFit fit = fit_two_lines(prof.t, prof.f, opt);
   if (!fit.valid) return sf;
   sf.distance = fit.position;

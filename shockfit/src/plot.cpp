@@ -145,11 +145,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
   if (have_profile) {
     const StationFit& sf = r.stations[static_cast<std::size_t>(r.plot_station)];
     const Profile prof = sample_profile(lat, r.field, d, sf.surface, sf.normal, s.shockfit.min_samples);
-    TwoLineOptions opt;
-    opt.window = s.shockfit.window * prof.spacing;
-    opt.correlation = prof.spacing / std::max(prof.step, 1e-300);
-    opt.noise_factor = s.shockfit.noise_factor;
-    opt.min_segment = std::max(opt.min_segment, static_cast<int>(std::ceil(s.shockfit.window * opt.correlation)));
+    const TwoLineOptions opt = two_line_options(prof, s.shockfit);
     const TwoLineFit fit = fit_two_lines(prof.t, prof.f, opt);
     std::ofstream o(f_prof);
     for (std::size_t k = 0; k < prof.t.size(); ++k) o << num(prof.t[k]) << ' ' << num(prof.f[k]) << '\n';
@@ -173,7 +169,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
       << "set size ratio -1\nset xrange [" << num(d.xmin) << ":" << num(d.xmax) << "]\nset yrange [" << num(d.ymin)
       << ":" << num(d.ymax) << "]\n"
       << "set xlabel 'x / L'\nset ylabel 'y / L'\nset palette rgb 33,13,10\n"
-      << "set key bottom right opaque\n"
+      << "set key bottom right opaque\nset clip two\n"
       << "plot '" << f_field.string() << "' using 1:2:3 with image notitle, \\\n"
       << "  '" << f_body.string() << "' using 1:2 with lines lw 2 lc rgb 'black' title 'body', \\\n"
       << "  '" << f_st.string() << "' using 1:2:($5>0?$3-$1:NaN):($5>0?$4-$2:NaN) with vectors nohead lc rgb 'white' lw 0.5 notitle, \\\n"

@@ -10,6 +10,9 @@ namespace {
 // Samples per lattice spacing along the normal: two resolve the breakpoint
 // to half a cell; more would only add correlated samples.
 constexpr double kSamplesPerCell = 2.0;
+// A bilinear sample mixes the cells within one spacing either side, so the
+// noise of samples decorrelates over about two lattice spacings.
+constexpr double kCorrelationCells = 2.0;
 // inside_body is 0/1 per cell; any bilinear weight of a body cell makes the
 // sample a mix of body and flow, so it is skipped.
 constexpr double kInsideBodyTolerance = 1e-12;
@@ -49,6 +52,17 @@ Profile sample_profile(const scene::Lattice& lat, const std::string& field, cons
     p.f.push_back(v);
   }
   return p;
+}
+
+TwoLineOptions two_line_options(const Profile& p, const scene::ShockfitParams& params) {
+  TwoLineOptions opt;
+  opt.window = params.window * p.spacing;
+  opt.correlation = kCorrelationCells * p.spacing / std::max(p.step, 1e-300);
+  opt.noise_factor = params.noise_factor;
+  // Each line spans at least the shock window, so a line never fits the
+  // jump alone.
+  opt.min_segment = std::max(opt.min_segment, static_cast<int>(std::ceil(opt.window / std::max(p.step, 1e-300))));
+  return opt;
 }
 
 }  // namespace shockfit

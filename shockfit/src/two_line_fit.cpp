@@ -21,11 +21,12 @@ constexpr double kNoiseFloorRel = 1e-9;
 // smooth profile (subsonic flow, an expansion) is a cubic on that scale, so
 // the two lines gain nothing; noise alone gains a few variances; a jump J
 // gains of order 0.1 J^2 per sample.
-constexpr double kLocalWindows = 4.0;
+constexpr double kLocalWindows = 6.0;
 constexpr int kMinLocalPoints = 8;
 constexpr int kBisectIterations = 100;
 // Fewest samples that define a line on either side of the shock window.
 constexpr int kMinLinePoints = 4;
+constexpr double kGuardWindows = 2.0;
 
 struct Sums {
   std::vector<double> n, t, f, tt, tf, ff;
@@ -133,9 +134,16 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   // shock window only, so the lines are the states on either side of the
   // shock. A jump too close to either end of the profile to leave such a
   // line is not measured.
-  const int in_end = static_cast<int>(std::lower_bound(t.begin(), t.end(), lo) - t.begin());
-  const int out_begin = static_cast<int>(std::upper_bound(t.begin(), t.end(), hi) - t.begin());
-  const bool clear = in_end >= kMinLinePoints && n - out_begin >= kMinLinePoints;
+  // The lines stay kGuardWindows windows clear of the breakpoint where the
+  // profile is long enough (the tails of a wide transition would tilt them),
+  // and at least one window clear.
+  auto split = [&](double guard, int& in_end, int& out_begin) {
+    in_end = static_cast<int>(std::lower_bound(t.begin(), t.end(), r.t_break - guard) - t.begin());
+    out_begin = static_cast<int>(std::upper_bound(t.begin(), t.end(), r.t_break + guard) - t.begin());
+    return in_end >= kMinLinePoints && n - out_begin >= kMinLinePoints;
+  };
+  int in_end = 0, out_begin = 0;
+  const bool clear = split(kGuardWindows * opt.window, in_end, out_begin) || split(opt.window, in_end, out_begin);
   Eigen::Matrix2d inv_in, inv_out;
   r.inner = clear ? fit_line(t, f, 0, in_end, inv_in) : fit_line(t, f, 0, k, inv_in);
   r.outer = clear ? fit_line(t, f, out_begin, n, inv_out) : fit_line(t, f, k, n, inv_out);

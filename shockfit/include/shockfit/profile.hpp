@@ -5,6 +5,7 @@
 
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "shockfit/two_line_fit.hpp"
 #include "scene/vec2.hpp"
 
 namespace shockfit {
@@ -26,5 +27,9 @@ double spacing_along(const scene::Lattice& lat, scene::Vec2 n);
 // sample count is below min_samples.
 Profile sample_profile(const scene::Lattice& lat, const std::string& field, const scene::Domain& d,
                        scene::Vec2 origin, scene::Vec2 normal, int min_samples);
+
+// Two-line fit options for a profile: the shock window and the noise
+// correlation in the profile's own units.
+TwoLineOptions two_line_options(const Profile& p, const scene::ShockfitParams& params);
 
 }  // namespace shockfit

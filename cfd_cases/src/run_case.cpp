@@ -1,6 +1,7 @@
 #include "cfd/run_case.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -36,6 +37,18 @@ constexpr double kMinTimeSlack = 1e-6;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Why a solver run ended badly, from its exit code and log.
+std::string diagnose(int rc, const std::string& log_path) {
+  const std::string log = scene::read_file(log_path);
+  if (log.find("sigFpe") != std::string::npos || rc == 128 + SIGFPE)
+    return "the solution diverged (floating-point exception in rhoCentralFoam)";
+  if (log.find("Negative initial temperature") != std::string::npos || log.find("Negative temperature") != std::string::npos)
+    return "the solution diverged (negative temperature)";
+  if (log.find("Maximum number of iterations exceeded") != std::string::npos)
+    return "the solution diverged (temperature iteration failed)";
+  return fmt::format("rhoCentralFoam failed (exit {})", rc);
 }
 
 [[noreturn]] void fail_run(const std::string& what, const std::string& log) {
@@ -173,7 +186,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   const int rc = solver.exit_code();
   // Ready for a rerun by hand (Allrun) from the latest time.
   set_control(cdir, "stopAt", "endTime");
-  if (rc != 0 && !stop_requested) fail_run(fmt::format("rhoCentralFoam failed (exit {})", rc), solver.log_path());
+  if (rc != 0 && !stop_requested) fail_run(diagnose(rc, solver.log_path()), solver.log_path());
   progress.finish(r.steady_state_reached ? "steady" : "not steady");
   if (user_stop) throw scene::RunError("interrupted; the case is kept in " + cdir);
   if (cs.np > 1) run_foam(cdir, "reconstructPar", "-latestTime");

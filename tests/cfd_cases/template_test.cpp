@@ -1,0 +1,69 @@
+// Template filling and run-time lookup; no OpenFOAM needed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "case_setup.hpp"
+#include "cfd/run_case.hpp"
+#include "scene/errors.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+TEST(Template, FillsEveryPlaceholder) {
+  const std::string out = cfd::fill_placeholders("maxCo @MAX_CO@; U (@MACH@ 0 0); again @MACH@;",
+                                                 {{"MAX_CO", "0.3"}, {"MACH", "5"}}, "t");
+  EXPECT_EQ(out, "maxCo 0.3; U (5 0 0); again 5;");
+}
+
+TEST(Template, LeftoverPlaceholderNamesFileAndKey) {
+  try {
+    (void)cfd::fill_placeholders("endTime @END_TIME@;", {{"MACH", "5"}}, "system/controlDict");
+    FAIL() << "expected an error";
+  } catch (const std::logic_error& e) {
+    EXPECT_STREQ(e.what(), "system/controlDict: placeholder @END_TIME@ has no value");
+  }
+}
+
+TEST(Template, DirectoryHoldsTheOpenFoamLayout) {
+  const std::filesystem::path d = cfd::template_dir();
+  for (const char* f : {"rhoCentralFoam/0.orig/p", "rhoCentralFoam/0.orig/T", "rhoCentralFoam/0.orig/U",
+                        "rhoCentralFoam/constant/thermophysicalProperties", "rhoCentralFoam/system/controlDict",
+                        "rhoCentralFoam/system/fvSchemes", "rhoCentralFoam/system/fvSolution",
+                        "rhoCentralFoam/system/decomposeParDict", "rhoCentralFoam/Allrun", "blockMesh/system/blockMeshDict"})
+    EXPECT_TRUE(std::filesystem::exists(d / f)) << f;
+}
+
+TEST(RunCase, MissingMeshIsInputError) {
+  const scene::Scene s = cfd_test::wedge_scene(3.0, 10.0);
+  const std::string dir = cfd_test::scratch_dir();
+  try {
+    (void)cfd::run_case(s, dir + "/nowhere", dir + "/case", {});
+    FAIL() << "expected InputError";
+  } catch (const scene::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/nowhere: no constant/polyMesh (run meshgen or cfd blockmesh first)");
+  }
+}
+
+TEST(BlockMesh, DetachedWedgeIsInputError) {
+  // theta = 40 deg exceeds the maximum deflection at Mach 3 (34.1 deg).
+  const scene::Scene s = cfd_test::wedge_scene(3.0, 40.0);
+  try {
+    cfd::make_wedge_block_mesh(s, 1000, cfd_test::scratch_dir());
+    FAIL() << "expected InputError";
+  } catch (const scene::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "<string>: the shock is detached at this Mach number; blockmesh covers attached wedges");
+  }
+}
+
+TEST(Params, CfdSectionRejectsUnknownFluxScheme) {
+  try {
+    (void)cfd_test::wedge_scene(3.0, 10.0, "{flux_scheme: Roe}");
+    FAIL() << "expected InputError";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cfd.flux_scheme"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace

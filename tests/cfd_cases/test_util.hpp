@@ -1,0 +1,28 @@
+#pragma once
+// Helpers shared by the cfd tests: scenes as text, scratch directories.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "scene/scene.hpp"
+
+namespace cfd_test {
+
+inline scene::Scene wedge_scene(double mach, double angle_deg, const std::string& cfd_section = "{}") {
+  return scene::parse_scene("name: test_wedge\nbody: {kind: wedge, angle_deg: " + std::to_string(angle_deg) +
+                            ", length: 1.0}\nfreestream: {mach: " + std::to_string(mach) +
+                            "}\ncfd: " + cfd_section + "\n");
+}
+
+// A fresh directory under the build tree's test scratch area, named for the test.
+inline std::string scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path d =
+      std::filesystem::temp_directory_path() / "shockgrain_cfd_tests" / (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+}  // namespace cfd_test

@@ -1,0 +1,10 @@
+# Engine tests (event-driven hard-disk engine): fast ones run in every CI
+# job; the 10^7-collision wedge-tip overlap test is labelled slow.
+add_stage_test(NAME granular_engine_tests PREFIX granular
+  SOURCES engine_support.cpp engine_contact_test.cpp engine_surface_test.cpp
+          engine_conservation_test.cpp engine_eos_test.cpp engine_haff_test.cpp
+          engine_box_run_test.cpp engine_checkpoint_test.cpp engine_flow_test.cpp
+  LIBS granular_core LABELS fast TIMEOUT 120)
+add_stage_test(NAME granular_engine_slow_tests PREFIX granular
+  SOURCES engine_support.cpp engine_slow_test.cpp
+  LIBS granular_core LABELS slow TIMEOUT 1200)

@@ -15,18 +15,24 @@ constexpr double kMadToSigma = 1.4826;
 // positive noise scale for the tests below; relative to the profile's size.
 constexpr double kNoiseFloorRel = 1e-9;
 // A jump must explain the profile near it better than one smooth curve can:
-// over kLocalWindows shock windows either side of the breakpoint (the shock
-// window itself left out, as in the line fits), the two lines' squared error
-// must undercut one cubic's by more than noise_factor^2 noise variances. A
-// smooth profile (subsonic flow, an expansion) is a cubic on that scale, so
-// the two lines gain nothing; noise alone gains a few variances; a jump J
-// gains of order 0.1 J^2 per sample.
+// over kLocalWindows shock windows either side of the breakpoint, the step
+// model (inner line up to the shock position, outer line after it) must
+// undercut one quadratic's squared error by more than noise_factor^2
+// variances of an independent sample. A smooth profile (subsonic flow, an
+// expansion) is a quadratic on that scale (its error is third order in the
+// window, the lines' second order), so the step gains nothing; noise alone
+// gains a few variances (a chi-square of few degrees of freedom); a jump J
+// gains of order 0.05 J^2 per sample, less its few transition samples. The
+// shock window stays in: left out, a smooth curve could bridge it freely.
 constexpr double kLocalWindows = 6.0;
+constexpr int kSmoothDegree = 2;
 constexpr int kMinLocalPoints = 8;
 constexpr int kBisectIterations = 100;
 // Fewest samples that define a line on either side of the shock window.
 constexpr int kMinLinePoints = 4;
 constexpr double kGuardWindows = 2.0;
+// A line shorter than this many windows is fitted as a level (no slope).
+constexpr double kMinSlopeSpanWindows = 2.0;
 
 struct Sums {
   std::vector<double> n, t, f, tt, tf, ff;
@@ -41,39 +47,45 @@ double segment_sse(const Sums& s, int i, int j) {
 }
 
 // Least-squares line over samples [i, j) with Eigen (QR); variances are
-// filled in later from the pooled noise.
-Line fit_line(const std::vector<double>& t, const std::vector<double>& f, int i, int j,
+// filled in later from the pooled noise. `level` fits a constant instead:
+// over a short segment the slope is mostly noise, and extrapolating it to
+// the shock would move the step more than the slope is worth.
+Line fit_line(const std::vector<double>& t, const std::vector<double>& f, int i, int j, bool level,
               Eigen::Matrix2d& xtx_inv) {
   const int n = j - i;
-  Eigen::MatrixXd X(n, 2);
+  const int cols = level ? 1 : 2;
+  Eigen::MatrixXd X(n, cols);
   Eigen::VectorXd y(n);
   for (int k = 0; k < n; ++k) {
     X(k, 0) = 1.0;
-    X(k, 1) = t[i + k];
+    if (!level) X(k, 1) = t[i + k];
     y(k) = f[i + k];
   }
-  const Eigen::Vector2d c = X.colPivHouseholderQr().solve(y);
-  xtx_inv = (X.transpose() * X).inverse();
+  const Eigen::VectorXd c = X.colPivHouseholderQr().solve(y);
   Line l;
   l.a = c(0);
-  l.b = c(1);
+  if (level) {
+    xtx_inv = Eigen::Matrix2d::Zero();
+    xtx_inv(0, 0) = 1.0 / n;
+  } else {
+    l.b = c(1);
+    xtx_inv = (X.transpose() * X).inverse();
+  }
   return l;
 }
 
-// Squared error of one cubic fitted to the samples `idx`: the smooth
-// alternative to a jump, with as many parameters as the two lines.
-double cubic_sse(const std::vector<double>& t, const std::vector<double>& f, const std::vector<int>& idx) {
+// Squared error of one polynomial of degree kSmoothDegree fitted to the
+// samples `idx`: the smooth alternative to a jump.
+double smooth_sse(const std::vector<double>& t, const std::vector<double>& f, const std::vector<int>& idx) {
   const auto n = static_cast<Eigen::Index>(idx.size());
   const double t0 = 0.5 * (t[idx.front()] + t[idx.back()]);
   const double scale = std::max(0.5 * (t[idx.back()] - t[idx.front()]), 1e-300);
-  Eigen::MatrixXd X(n, 4);
+  Eigen::MatrixXd X(n, kSmoothDegree + 1);
   Eigen::VectorXd y(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const double u = (t[idx[k]] - t0) / scale;
-    X(k, 0) = 1.0;
-    X(k, 1) = u;
-    X(k, 2) = u * u;
-    X(k, 3) = u * u * u;
+    double p = 1.0;
+    for (int d = 0; d <= kSmoothDegree; ++d, p *= u) X(k, d) = p;
     y(k) = f[idx[k]];
   }
   const Eigen::VectorXd c = X.colPivHouseholderQr().solve(y);
@@ -145,8 +157,15 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   int in_end = 0, out_begin = 0;
   const bool clear = split(kGuardWindows * opt.window, in_end, out_begin) || split(opt.window, in_end, out_begin);
   Eigen::Matrix2d inv_in, inv_out;
-  r.inner = clear ? fit_line(t, f, 0, in_end, inv_in) : fit_line(t, f, 0, k, inv_in);
-  r.outer = clear ? fit_line(t, f, out_begin, n, inv_out) : fit_line(t, f, k, n, inv_out);
+  const auto span = [&](int i, int j) { return t[j - 1] - t[i]; };
+  const double min_span = kMinSlopeSpanWindows * opt.window;
+  if (clear) {
+    r.inner = fit_line(t, f, 0, in_end, span(0, in_end) < min_span, inv_in);
+    r.outer = fit_line(t, f, out_begin, n, span(out_begin, n) < min_span, inv_out);
+  } else {
+    r.inner = fit_line(t, f, 0, k, false, inv_in);
+    r.outer = fit_line(t, f, k, n, false, inv_out);
+  }
 
   // Noise from the residuals outside the window (the transition is signal).
   std::vector<double> res;
@@ -233,14 +252,18 @@ TwoLineFit fit_two_lines(const std::vector<double>& t, const std::vector<double>
   std::vector<int> local;
   double local_sse = 0.0;
   for (int i = 0; i < n; ++i) {
-    if (t[i] < llo || t[i] > lhi || (t[i] >= lo && t[i] <= hi)) continue;
+    if (t[i] < llo || t[i] > lhi) continue;
     local.push_back(i);
-    const double e = f[i] - (i < k ? r.inner.at(t[i]) : r.outer.at(t[i]));
+    const double e = f[i] - (t[i] < r.position ? r.inner.at(t[i]) : r.outer.at(t[i]));
     local_sse += e * e;
   }
   const bool not_smooth = static_cast<int>(local.size()) >= kMinLocalPoints &&
-                          cubic_sse(t, f, local) - local_sse > k_sig * k_sig * var_scale;
+                          smooth_sse(t, f, local) - local_sse > k_sig * k_sig * var_scale;
   r.accepted = clear && (step_jump || slope_jump) && not_smooth;
+  r.rejected_by = r.accepted        ? ""
+                  : !clear          ? "jump too close to an end of the profile"
+                  : !(step_jump || slope_jump) ? "no step or change of slope above the noise"
+                                    : "a smooth curve fits as well";
   return r;
 }
 

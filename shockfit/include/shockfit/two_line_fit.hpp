@@ -32,6 +32,7 @@ struct TwoLineFit {
   double step = 0.0;         // outer - inner at t_break
   double noise = 0.0;        // robust per-sample noise of the residuals
   double rms = 0.0;          // root-mean-square residual of the two lines (fit error)
+  const char* rejected_by = "too few samples";  // why not accepted ("" when accepted)
 };
 
 // t strictly increasing; f finite. Never throws; `valid` false when the

@@ -39,6 +39,14 @@ struct FlowSetup {
   FlowConfig config;            // engine units; seed set per replica
 };
 
+// The body's walls inside the domain, in scene units, each chain traversed
+// with the body on its right (the engine's convention): the outline clipped
+// to the domain rectangle, pieces along a domain face (the outflow plane,
+// the symmetry plane) dropped. A body wholly inside gives one closed loop
+// (first point repeated). Works for bodies whose most upstream point is off
+// the symmetry line (a notch facing the stream), unlike a walk from the nose.
+std::vector<std::vector<scene::Vec2>> body_chains(const scene::BodyGeometry& g, const scene::Domain& d);
+
 // Throws InputError (naming the key) for scenes the flow cannot model.
 FlowSetup make_flow_setup(const scene::Scene& s);
 

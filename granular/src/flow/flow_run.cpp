@@ -25,7 +25,7 @@ namespace {
 constexpr int kSingleReplicaBatches = 4;
 // Warm-up assumed for the progress estimate when it is detected.
 constexpr double kWarmupGuessFlowThroughs = 2.0;
-constexpr auto kProgressPoll = std::chrono::milliseconds(200);
+constexpr auto kProgressPoll = std::chrono::milliseconds(50);
 
 // Per-replica scalars travel with the field sums in one vector so that one
 // element-wise sum over ranks reduces everything.

@@ -79,9 +79,9 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
   c.ymin = f.domain.ymin * f.scale;
   c.ymax = f.domain.ymax * f.scale;
   c.symmetric = f.domain.symmetric;
-  std::vector<scene::Vec2> chain = scene::clipped_outline(f.body, f.domain);
-  for (scene::Vec2& q : chain) q = to_engine(f, q);
-  c.body_chains = {chain};
+  c.body_chains = body_chains(f.body, f.domain);
+  for (auto& chain : c.body_chains)
+    for (scene::Vec2& q : chain) q = to_engine(f, q);
   c.inflow_speed = f.mach * f.sound_speed;
   c.temperature = 1.0;
   c.packing_fraction = f.packing_fraction;

@@ -27,6 +27,8 @@ constexpr double kOutlierFloorCells = 1.0;
 // The near-axis parabola of a detached shock uses points within this many
 // body lengths of the axis (Billig's hyperbola is a parabola there).
 constexpr double kParabolaReach = 0.5;
+// Fewest points for the parabola to stand in for the stagnation station.
+constexpr int kMinParabolaPoints = 5;
 // Two stations closer than this (in lattice spacings) are the same point.
 constexpr double kSamePointCells = 1e-6;
 
@@ -92,6 +94,7 @@ nlohmann::json ShockResult::summary() const {
                                   : nlohmann::json(nullptr);
   j["standoff"] = num(standoff);
   j["standoff_ci"] = num(standoff_ci);
+  j["standoff_stagnation"] = num(standoff_stagnation);
   j["stations"] = static_cast<int>(stations.size());
   j["stations_accepted"] = accepted_count();
   j["shock_line"] = shock == "attached" ? nlohmann::json{{"point", {line_point.x, line_point.y}},
@@ -132,15 +135,31 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
 
   if (detached) {
     r.shock = "detached";
-    r.standoff = r.stagnation.distance / L;
+    r.standoff_stagnation = r.stagnation.distance / L;
+    r.standoff = r.standoff_stagnation;
     r.standoff_ci = r.stagnation.ci / L;
-    std::vector<scene::Vec2> near_axis;
+    // Near the axis the shock is a parabola x = x0 + c y^2 (Billig's
+    // hyperbola to second order). Its vertex, fitted through every accepted
+    // point there, is the shock on the stagnation line with the noise of
+    // many stations instead of one: the standoff, with a bootstrap interval.
+    std::vector<scene::Vec2> near_axis, normals;
+    std::vector<double> sig;
     for (const StationFit& f : r.stations)
-      if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
-    if (near_axis.size() >= static_cast<std::size_t>(kMinAccepted)) {
+      if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) {
+        near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
+        normals.push_back(f.normal);
+        sig.push_back(f.ci / kCi95);
+      }
+    if (near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints)) {
       const auto [x0, c] = fit_axis_parabola(near_axis);
       r.vertex_x = x0;
       r.curvature_radius = c > 0 ? 1.0 / (2.0 * c) / L : kNaN;
+      const Interval iv = bootstrap(near_axis, normals, sig, p.bootstrap, p.seed,
+                                    [](const std::vector<scene::Vec2>& q) { return fit_axis_parabola(q).first; });
+      if (std::isfinite(x0) && std::isfinite(iv.lo) && x0 < g.nose.x) {
+        r.standoff = (g.nose.x - x0) / L;
+        r.standoff_ci = 0.5 * (iv.hi - iv.lo) / L;
+      }
     }
   } else {
     // Attached (or none): the shock line through the accepted points. The

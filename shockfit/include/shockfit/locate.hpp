@@ -32,6 +32,7 @@ struct ShockResult {
   // Details (NaN when n/a).
   double shock_angle_lo_deg = kNaN, shock_angle_hi_deg = kNaN;  // 95% interval
   scene::Vec2 line_point{kNaN, kNaN}, line_dir{kNaN, kNaN};  // fitted attached shock
+  double standoff_stagnation = kNaN;  // detached: from the stagnation-line station alone (body lengths)
   double vertex_x = kNaN;          // detached: shock vertex x from the near-axis parabola
   double curvature_radius = kNaN;  // detached: shock radius of curvature at the vertex (body lengths)
   StationFit stagnation;                // the fit along the stagnation line (from the nose, along -x)

@@ -15,6 +15,7 @@
 #include "cfd/run_case.hpp"
 #include "foam_process.hpp"
 #include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 
 #ifndef CFD_TEMPLATE_SOURCE_DIR
@@ -30,6 +31,7 @@ namespace {
 // OpenFOAM's universal gas constant RR = 1e3 N_A k (J/(kmol K)) in v1912's
 // thermodynamicConstants; molWeight = RR gamma gives R = 1/gamma.
 constexpr double kFoamRR = 8314.47;
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // OpenFOAM re-reads a modified controlDict only if its time stamp moved by
 // more than fileModificationSkew (10 s in v1912's etc/controlDict). Dating
@@ -48,6 +50,12 @@ void backdate(const std::string& path) {
 }
 
 }  // namespace
+
+bool start_at_rest(const scene::Scene& s) {
+  if (s.cfd.start != "auto") return s.cfd.start == "rest";
+  const bool wedge = s.body && s.body->kind == scene::BodyKind::wedge;
+  return !(wedge && scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, s.freestream.gamma));
+}
 
 std::string template_dir() {
   std::vector<std::string> c;
@@ -132,6 +140,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"P_INF", num(f.p)},
       {"T_INF", num(f.T)},
       {"MACH", num(f.mach)},
+      {"U_INIT", start_at_rest(s) ? "0" : num(f.mach)},
       {"MOL_WEIGHT", num(kFoamRR * f.gamma)},
       {"CP", num(1.0 / (f.gamma - 1.0))},
       {"END_TIME", num(cs.end_time)},

@@ -27,6 +27,9 @@ struct CaseSettings {
   long write_steps = 0;        // LTS: steps between written times
 };
 
+// Whether the flow starts at rest (cfd.start, resolved for "auto").
+bool start_at_rest(const scene::Scene& s);
+
 // Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
 std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
                               const std::string& origin);

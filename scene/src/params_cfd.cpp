@@ -15,6 +15,7 @@ CfdParams parse_cfd(Section& s) {
   p.limiter = s.string("limiter", p.limiter, {"vanLeer", "Minmod"});
   p.min_time = s.number("min_time", p.min_time, non_negative());
   p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));
+  p.start = s.string("start", p.start, {"auto", "freestream", "rest"});
   if (p.write_interval > p.end_time) s.fail("write_interval", "must not exceed end_time");
   return p;
 }
@@ -32,6 +33,7 @@ void emit_cfd(YAML::Emitter& e, const CfdParams& p) {
   emit_kv(e, "limiter", p.limiter);
   emit_kv(e, "min_time", p.min_time);
   emit_kv(e, "steady_checks", p.steady_checks);
+  emit_kv(e, "start", p.start);
   e << YAML::EndMap;
 }
 

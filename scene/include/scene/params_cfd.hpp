@@ -17,6 +17,9 @@ struct CfdParams {
   std::string limiter = "vanLeer";       // reconstruction limiter: vanLeer | Minmod
   double min_time = 1.0;           // flow-through times before a steady state may be declared
   int steady_checks = 2;           // consecutive written times that must meet both tolerances
+  // Initial state: freestream | rest | auto (free stream for attached-shock
+  // wedges, rest otherwise: an impulsive start behind a blunt body diverges).
+  std::string start = "auto";
 };
 
 }  // namespace scene

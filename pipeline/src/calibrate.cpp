@@ -8,6 +8,7 @@
 #include "pipeline/plot.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
+#include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"

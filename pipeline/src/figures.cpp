@@ -1,5 +1,6 @@
 #include "pipeline/figures.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>

@@ -21,6 +21,8 @@ constexpr double kCoincide = 1e-10;
 // crossing is then found by bisection to round-off.
 constexpr int kWalkSamples = 256;
 constexpr int kBisections = 60;
+// A crossing this close (relative) to a piece's end point is that end point.
+constexpr double kSnapToVertex = 1e-8;
 // A fluid corner narrower than this between the body and a boundary makes a
 // cusp no valid cell fits in (the disc's rear point on x = xmax).
 constexpr double kMinCornerDeg = 20.0;
@@ -83,7 +85,8 @@ struct Walk {
 
 class Rect {
  public:
-  Rect(const scene::Domain& d, double eps) : d_(d), eps_(eps) {}
+  Rect(const scene::Domain& d, double eps, double scale) : d_(d), eps_(eps), scale_(scale) {}
+  double scale() const { return scale_; }
   bool inside(Vec2 p) const {
     return p.x > d_.xmin + eps_ && p.x < d_.xmax - eps_ && p.y > d_.ymin + eps_ && p.y < d_.ymax - eps_;
   }
@@ -140,7 +143,7 @@ class Rect {
 
  private:
   scene::Domain d_;
-  double eps_;
+  double eps_, scale_;
 };
 
 // Follows the pieces (starting at the nose) while they stay inside the
@@ -162,7 +165,9 @@ Walk walk(const std::vector<BodyPiece>& pieces, const Rect& rect) {
       const double mid = 0.5 * (lo + hi);
       (rect.inside(point_at(p, mid)) ? lo : hi) = mid;
     }
-    BodyPiece cut = split(p, hi).first;
+    // A piece that ends on the boundary (the wedge's rear corner) keeps its
+    // exact end point instead of the bisection's, which stops eps short.
+    BodyPiece cut = scene::norm(point_at(p, hi) - p.b) <= kSnapToVertex * rect.scale() ? p : split(p, hi).first;
     cut.b = rect.snap(cut.b);
     w.exit_tangent = tangent_at(p, hi);
     if (scene::norm(cut.b - cut.a) > 0) w.pieces.push_back(cut);
@@ -280,7 +285,7 @@ FluidRegion make_fluid_region(const scene::Scene& s) {
   for (auto it = cw.rbegin(); it != cw.rend(); ++it) ccw.push_back(reversed(*it));
 
   const auto build = [&](const scene::Domain& d, bool& grazing) {
-    const Rect rect(d, eps);
+    const Rect rect(d, eps, r.length_scale);
     grazing = false;
     std::vector<std::vector<BoundaryCurve>> loops;
     const Walk upper = walk(cw, rect);

@@ -101,7 +101,10 @@ void set_patch_types(const std::string& case_dir, const std::map<std::string, st
     if (!seen.count(name)) throw scene::RunError(path + ": patch '" + name + "' missing after gmshToFoam");
   // The entry count in front of the list must match what is left.
   const std::regex count(R"(\n(\d+)\s*\n\()");
-  out = std::regex_replace(out, count, "\n" + std::to_string(seen.size()) + "\n(", std::regex_constants::format_first_only);
+  std::string replacement = "\n";
+  replacement += std::to_string(seen.size());
+  replacement += "\n(";
+  out = std::regex_replace(out, count, replacement, std::regex_constants::format_first_only);
   scene::write_file_atomic(path, out);
 }
 

@@ -218,7 +218,11 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   res.seconds = gmsh_seconds;
   double hmin = std::numeric_limits<double>::infinity(), hmax = 0.0, band_max = 0.0;
   long band_cells = 0;
-  const SizeField band_field(sizing.params, sizing.runs, region.body.polyline);
+  // The band as the clustered field defines it (also measured on uniform
+  // grids, for comparison), at the sizes actually used.
+  SizeParams band_params = sizing.params;
+  band_params.h_max = std::max(band_params.h_max, band_params.h_min * plan.base.growth);
+  const SizeField band_field(band_params, sizing.runs, {});
   for (const auto& c : mesh.cells) {
     const double h = cell_size(mesh, c);
     hmin = std::min(hmin, h);

@@ -13,6 +13,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Lattice points per side for cell-count estimates (the estimate is only a
 // starting point; the mesher's count is what is checked).
 constexpr int kEstimateLattice = 400;
+constexpr double kMaxBuckets = 256.0;
 }  // namespace
 
 std::vector<ShockRun> clip_shock(const std::vector<Vec2>& curve, const std::vector<double>& half_width,
@@ -84,7 +85,10 @@ void SegmentIndex::build(double cutoff) {
   }
   // Every segment that can matter lies within cutoff + vmax: with cells that
   // wide, the 3 x 3 block round a point holds all of them.
-  cell_ = std::max(cutoff + vmax, 1e-12 * std::max(xmax - xmin, ymax - ymin) + 1e-300);
+  // Never more than kMaxBuckets per side (a zero cut-off, h_min = h_max,
+  // would otherwise ask for a lattice of zero-width cells).
+  const double extent = std::max(xmax - xmin, ymax - ymin);
+  cell_ = std::max({cutoff + vmax, extent / kMaxBuckets, 1e-300});
   x0_ = xmin;
   y0_ = ymin;
   nx_ = static_cast<int>((xmax - xmin) / cell_) + 1;

@@ -36,7 +36,7 @@ TEST(FlowHardCases, MachTenStream) {
   const granular::FlowResult r = run(R"(
 body: {kind: wedge, angle_deg: 15, length: 1.0}
 freestream: {mach: 3.0}
-granular: {mach: 10, body_diameters: 30, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
+granular: {mach: 10, inflow_packing_fraction: 0.05, body_diameters: 30, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
 )");
   expect_clean(r);
   EXPECT_NEAR(r.summary["mach"].get<double>(), 10.0, 1e-12);
@@ -62,7 +62,7 @@ TEST(FlowHardCases, GravityOn) {
   const granular::FlowResult r = run(R"(
 body: {kind: wedge, angle_deg: 10, length: 1.0}
 freestream: {mach: 3.0}
-granular: {gravity: [0, -0.2], body_diameters: 30, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
+granular: {gravity: [0, -0.2], inflow_packing_fraction: 0.05, body_diameters: 30, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
 )");
   expect_clean(r);
   EXPECT_LT(r.fields.y0, 0.0);  // full domain, not the upper half
@@ -78,7 +78,7 @@ TEST(FlowHardCases, ConcavePolygonWithReentrantCorner) {
   const granular::FlowResult r = run(R"(
 body: {kind: polygon, points: [[0, 0.5], [0.5, 0], [0, -0.5], [1, -0.5], [1, 0.5]]}
 freestream: {mach: 3.0}
-granular: {body_diameters: 20, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
+granular: {inflow_packing_fraction: 0.05, body_diameters: 20, lattice_nx: 30, lattice_ny: 30, warmup: 1.0, averaging: 1.0}
 )");
   expect_clean(r);
   // The notch (x < 0.5 - |y|) fills with compressed gas.

@@ -31,7 +31,7 @@ const char* kSmallWedge = R"(
 name: small_wedge
 body: {kind: wedge, angle_deg: 10, length: 1.0}
 freestream: {mach: 3.0}
-granular: {body_diameters: 40, lattice_nx: 40, lattice_ny: 30, warmup: 1.0, averaging: 1.5, replicas: 2, seed: 11}
+granular: {inflow_packing_fraction: 0.05, body_diameters: 40, lattice_nx: 40, lattice_ny: 30, warmup: 1.0, averaging: 1.5, replicas: 2, seed: 11}
 )";
 
 }  // namespace

@@ -26,7 +26,7 @@ const char* kWedge = R"(
 name: w
 body: {kind: wedge, angle_deg: 10, length: 1.0}
 freestream: {mach: 3.0}
-granular: {body_diameters: 50}
+granular: {inflow_packing_fraction: 0.05, body_diameters: 50}
 )";
 
 template <class F>

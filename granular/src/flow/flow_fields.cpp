@@ -10,15 +10,15 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDiskArea = std::numbers::pi / 4.0;
-// Sub-points per side to measure the part of a cell outside the body: cells
-// cut by the wall hold disks only in their fluid part, so densities divide
-// by that area, not the whole cell.
+// Sub-points per side to measure the part of a cell that disk centres can
+// reach (a radius away from the body and the mirror plane): cells cut by a
+// wall hold disks only there, so densities divide by that area.
 constexpr int kCellSubSamples = 6;
 // Fewest samples for a velocity/temperature value: the temperature is a
 // variance, which needs two.
 constexpr double kMinSamples = 2.0;
-// Cells whose fluid part is this small give meaningless densities; treat
-// them as body.
+// Cells whose reachable part is this small give meaningless densities:
+// their fields stay NaN (inside_body 0, as their centre is outside).
 constexpr double kMinFluidFraction = 0.05;
 
 struct CellValues {
@@ -103,21 +103,34 @@ scene::Lattice make_fields(const FlowSetup& f, const scene::Lattice& geometry,
   for (const FieldSums& b : blocks) pooled += b;
   const double cell_area_d2 = lat.dx * lat.dy * f.scale * f.scale;
   std::vector<double> bnu(blocks.size()), bu(blocks.size()), bv(blocks.size());
+  const double radius = f.config.radius / f.scale;  // scene units
+  const double half_diag = 0.5 * std::hypot(lat.dx, lat.dy);
+  auto reachable = [&](scene::Vec2 q) {
+    return scene::signed_distance(f.body, q) > radius && (!f.domain.symmetric || q.y > f.domain.ymin + radius);
+  };
   for (int j = 0; j < lat.ny; ++j)
     for (int i = 0; i < lat.nx; ++i) {
       const std::size_t c = lat.index(i, j);
-      int fluid = 0;
-      for (int b = 0; b < kCellSubSamples; ++b)
-        for (int a = 0; a < kCellSubSamples; ++a) {
-          const scene::Vec2 q{lat.x0 + (i + (a + 0.5) / kCellSubSamples) * lat.dx,
-                              lat.y0 + (j + (b + 0.5) / kCellSubSamples) * lat.dy};
-          if (!scene::point_in_body(f.body, q)) ++fluid;
-        }
-      const double fluid_fraction = static_cast<double>(fluid) / (kCellSubSamples * kCellSubSamples);
-      if (scene::point_in_body(f.body, {lat.xc(i), lat.yc(j)}) || fluid_fraction < kMinFluidFraction) {
+      // Disk centres stay a radius away from walls and the mirror plane, so
+      // a cell's density is per unit of the area its centres can reach.
+      const scene::Vec2 centre{lat.xc(i), lat.yc(j)};
+      const double dist = scene::signed_distance(f.body, centre);
+      if (dist < 0.0) {
         inside[c] = 1.0;
         continue;
       }
+      double fluid_fraction = 1.0;
+      if (dist < half_diag + radius || (f.domain.symmetric && centre.y - f.domain.ymin < half_diag + radius)) {
+        int fluid = 0;
+        for (int b = 0; b < kCellSubSamples; ++b)
+          for (int a = 0; a < kCellSubSamples; ++a) {
+            const scene::Vec2 q{lat.x0 + (i + (a + 0.5) / kCellSubSamples) * lat.dx,
+                                lat.y0 + (j + (b + 0.5) / kCellSubSamples) * lat.dy};
+            if (reachable(q)) ++fluid;
+          }
+        fluid_fraction = static_cast<double>(fluid) / (kCellSubSamples * kCellSubSamples);
+      }
+      if (fluid_fraction < kMinFluidFraction) continue;  // NaN: a sliver only centres at the wall reach
       const double area = cell_area_d2 * fluid_fraction;
       const CellValues cv = cell_values(pooled, c, area);
       samples[c] = pooled.at(FieldSums::count, c);

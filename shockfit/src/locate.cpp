@@ -31,6 +31,8 @@ constexpr double kParabolaReach = 0.5;
 constexpr int kMinParabolaPoints = 5;
 // Two stations closer than this (in lattice spacings) are the same point.
 constexpr double kSamePointCells = 1e-6;
+// Shock windows tried per station, in units of shockfit.window.
+constexpr double kWindowWidening[] = {1.0, 2.0, 4.0};
 
 const char* const kDensityFields[] = {"volume_fraction", "rho", "number_density"};
 constexpr const char* kVelocityField = "v";
@@ -59,8 +61,19 @@ StationFit fit_station(const scene::Lattice& lat, const std::string& field, cons
   sf.shock = {kNaN, kNaN};
   sf.distance = sf.ci = sf.fit_error = kNaN;
   const Profile prof = sample_profile(lat, field, d, origin, normal, p.min_samples);
-  const TwoLineOptions opt = two_line_options(prof, p);
-  const TwoLineFit fit = fit_two_lines(prof.t, prof.f, opt);
+  // Shocks are a few cells wide in CFD fields but can span ten cells of a
+  // granular lattice; a window much narrower than the shock makes the sharp
+  // step model lose to a smooth curve. Widen the window until the station
+  // accepts a jump (the narrowest that does wins, for resolution).
+  TwoLineFit fit;
+  for (const double widen : kWindowWidening) {
+    TwoLineOptions opt = two_line_options(prof, p);
+    opt.window *= widen;
+    opt.min_segment = std::max(opt.min_segment, static_cast<int>(std::ceil(opt.window / std::max(prof.step, 1e-300))));
+    TwoLineFit f = fit_two_lines(prof.t, prof.f, opt);
+    if (widen == kWindowWidening[0] || f.accepted) fit = f;
+    if (fit.accepted) break;
+  }
   if (!fit.valid) return sf;
   sf.distance = fit.position;
   sf.shock = origin + fit.position * normal;

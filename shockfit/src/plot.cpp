@@ -178,7 +178,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
       << "  '" << f_st.string() << "' using ($5>0?NaN:$3):4 with points pt 2 ps 0.8 lc rgb 'gray' title 'rejected', \\\n"
       << "  '" << f_fit.string() << "' using 1:2 with lines lw 2 dt 2 lc rgb 'red' title 'fitted shock'\n";
     if (have_profile) {
-      o << "set output '" << tmp2.string() << "'\nunset size\nset autoscale\nset terminal pngcairo size " << kProfileWide
+      o << "set output '" << tmp2.string() << "'\nset size noratio\nset size 1,1\nset autoscale\nset terminal pngcairo size " << kProfileWide
         << "," << kProfileHigh << " font 'sans,10'\n"
         << "set title \"station " << r.plot_station << ": " << r.field << " along the normal\" noenhanced\n"
         << "set xlabel 'distance from the surface / L'\nset ylabel '" << r.field << "' noenhanced\n"

@@ -274,6 +274,10 @@ Domain scene_domain(const Scene& s) {
 
 std::string to_yaml(const Scene& s) {
   YAML::Emitter e;
+  // 15 significant digits: exact for the decimal values people write (1.4,
+  // not 1.3999999999999999) while keeping computed values to round-off.
+  e.SetDoublePrecision(15);
+  e.SetFloatPrecision(7);
   e << YAML::BeginMap;
   emit_kv(e, "schema", kSchemaVersion);
   emit_kv(e, "name", s.name);

@@ -51,10 +51,21 @@ void backdate(const std::string& path) {
 
 }  // namespace
 
+namespace {
+bool attached_wedge(const scene::Scene& s) {
+  const bool wedge = s.body && s.body->kind == scene::BodyKind::wedge;
+  return wedge && scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, s.freestream.gamma);
+}
+}  // namespace
+
 bool start_at_rest(const scene::Scene& s) {
   if (s.cfd.start != "auto") return s.cfd.start == "rest";
-  const bool wedge = s.body && s.body->kind == scene::BodyKind::wedge;
-  return !(wedge && scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, s.freestream.gamma));
+  return !attached_wedge(s);
+}
+
+std::string limiter(const scene::Scene& s) {
+  if (s.cfd.limiter != "auto") return s.cfd.limiter;
+  return attached_wedge(s) ? "vanLeer" : "Minmod";
 }
 
 std::string template_dir() {
@@ -152,7 +163,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"MAX_DELTA_T", num(cs.flow_through)},
       {"FLUX_SCHEME", p.flux_scheme},
       {"DDT_SCHEME", cs.lts ? "localEuler" : "Euler"},
-      {"RECONSTRUCT", p.limiter},
+      {"RECONSTRUCT", limiter(s)},
       {"NP", std::to_string(cs.np)},
       {"FOAM_BASHRC", foam_bashrc()},
       {"SCENE", s.name},

@@ -29,6 +29,8 @@ struct CaseSettings {
 
 // Whether the flow starts at rest (cfd.start, resolved for "auto").
 bool start_at_rest(const scene::Scene& s);
+// The reconstruction limiter (cfd.limiter, resolved for "auto").
+std::string limiter(const scene::Scene& s);
 
 // Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
 std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,

@@ -14,7 +14,10 @@ struct CfdParams {
   bool local_time_stepping = false;  // ddt localEuler (rhoCentralFoam LTS)
   int np = 1;                      // MPI ranks (decomposePar / mpirun / reconstructPar)
   std::string flux_scheme = "Kurganov";  // Kurganov | Tadmor
-  std::string limiter = "vanLeer";       // reconstruction limiter: vanLeer | Minmod
+  // Reconstruction limiter: vanLeer | Minmod | auto (vanLeer for
+  // attached-shock wedges, Minmod for blunt bodies: with vanLeer the Apollo
+  // capsule at Mach 5 diverges at its afterbody).
+  std::string limiter = "auto";
   double min_time = 1.0;           // flow-through times before a steady state may be declared
   int steady_checks = 2;           // consecutive written times that must meet both tolerances
   // Initial state: freestream | rest | auto (free stream for attached-shock

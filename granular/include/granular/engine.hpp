@@ -10,6 +10,7 @@
 #include <iosfwd>
 #include <limits>
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -80,9 +81,14 @@ struct EngineConfig {
   double min_cell = 0.0;
 };
 
-struct Particle {  // hot state, one cache line; lazy clock: state is at time t
+// Hot per-disk state, exactly one cache line: everything a neighbour scan
+// reads. Lazy clock: the state is at time t.
+struct alignas(64) Particle {
   double x, y, vx, vy, t;
-  std::uint32_t count;  // collision counter: changes invalidate predictions
+  double last_coll;      // time of the previous collision (TC model)
+  std::uint32_t count;   // collision counter: a change invalidates predictions
+  std::int32_t next;     // next disk in the same cell (-1: end)
+  std::int32_t cell;     // current cell
   std::uint16_t species;
   std::uint16_t alive;
 };
@@ -101,6 +107,8 @@ class Engine {
   std::size_t add(Vec2 r, Vec2 v, int species = 0);
   // As add(), but returns false instead of throwing on overlap.
   bool try_add(Vec2 r, Vec2 v, int species = 0);
+  // Room for n disks without reallocation (memory: no growth slack).
+  void reserve(std::size_t n);
   // Builds the event calendar; called automatically by the first run.
   void start();
 
@@ -140,8 +148,9 @@ class Engine {
         Vec2{p.vx + g.x * dt, p.vy + g.y * dt}, static_cast<int>(p.species));
     }
   }
-  // Slot storage (dead slots have alive == 0); states are at their own clocks.
-  const std::vector<Particle>& particles() const;
+  // Slot storage (dead slots have alive == 0); states are at their own
+  // clocks. Slots are renumbered now and then (spatial sorting).
+  std::span<const Particle> particles() const;
 
   // Collisional virial sum_collisions r_ij . dp_i accumulated since the last
   // reset, and the time-integral of the kinetic energy since then (for the

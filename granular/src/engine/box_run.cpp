@@ -83,6 +83,7 @@ Engine make_box_engine(const BoxSetup& b) {
     c.walls = {{p0, p1, -1.0}, {p1, p2, -1.0}, {p2, p3, -1.0}, {p3, p0, -1.0}};
   }
   Engine eng(std::move(c));
+  eng.reserve(static_cast<std::size_t>(b.particles));
   // Square lattice of at least N sites, occupied at random; spacing must
   // exceed a diameter (packing fractions up to pi/4 * (1 - margin)).
   const auto n = static_cast<std::size_t>(b.particles);

@@ -23,8 +23,8 @@ void put(std::ostream& o, const T& v) {
   static_assert(std::is_trivially_copyable_v<T>);
   o.write(reinterpret_cast<const char*>(&v), sizeof(T));
 }
-template <class T>
-void put_vec(std::ostream& o, const std::vector<T>& v) {
+template <class T, class A>
+void put_vec(std::ostream& o, const std::vector<T, A>& v) {
   put(o, static_cast<std::uint64_t>(v.size()));
   if (!v.empty()) o.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
 }
@@ -33,8 +33,8 @@ void get(std::istream& in, T& v) {
   in.read(reinterpret_cast<char*>(&v), sizeof(T));
   if (!in) throw scene::InputError("checkpoint: truncated file");
 }
-template <class T>
-void get_vec(std::istream& in, std::vector<T>& v) {
+template <class T, class A>
+void get_vec(std::istream& in, std::vector<T, A>& v) {
   std::uint64_t n = 0;
   get(in, n);
   if (n > (std::uint64_t{1} << 40)) throw scene::InputError("checkpoint: corrupt size");
@@ -88,6 +88,7 @@ void Engine::save(std::ostream& o) const {
   put(o, m.energy_integral);
   put(o, m.energy_since);
   put(o, m.events);
+  put(o, m.next_reorder);
   std::vector<double> keys(m.cal.capacity());
   for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = m.cal.key(i);
   put_vec(o, keys);
@@ -103,7 +104,7 @@ Engine Engine::load(std::istream& in) {
   Impl& m = *e.impl_;
   get_vec(in, m.p);
   get_vec(in, m.s);
-  std::vector<std::int32_t> head;
+  decltype(m.head) head;
   get_vec(in, head);
   if (head.size() != m.head.size() || m.s.size() != m.p.size())
     throw scene::InputError("checkpoint: inconsistent grid");
@@ -118,6 +119,7 @@ Engine Engine::load(std::istream& in) {
   get(in, m.energy_integral);
   get(in, m.energy_since);
   get(in, m.events);
+  get(in, m.next_reorder);
   std::vector<double> keys;
   get_vec(in, keys);
   if (m.started) {

@@ -22,6 +22,22 @@ constexpr double kRecoveryTolerance = 1e-9;
 constexpr double kSegmentEndSlack = 1e-9;
 // Interrupt polling period (events).
 constexpr std::uint64_t kPollMask = 1023;
+// Slots are renumbered in Morton (Z) order of their cells every this many
+// collisions per disk, so that a neighbourhood sits in nearby memory: the
+// large-N rate is bound by cache and TLB misses. Small systems fit in cache
+// and keep their numbering.
+constexpr double kReorderCollisionsPerDisk = 10.0;
+constexpr std::size_t kReorderMinDisks = 4096;
+
+std::uint64_t spread_bits(std::uint32_t v) {
+  std::uint64_t x = v;
+  x = (x | (x << 16)) & 0x0000FFFF0000FFFFULL;
+  x = (x | (x << 8)) & 0x00FF00FF00FF00FFULL;
+  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0FULL;
+  x = (x | (x << 2)) & 0x3333333333333333ULL;
+  x = (x | (x << 1)) & 0x5555555555555555ULL;
+  return x;
+}
 
 }  // namespace
 
@@ -45,15 +61,15 @@ int Engine::Impl::cell_of(double x, double y) const {
 }
 
 void Engine::Impl::cell_insert(std::int32_t i, int c) {
-  s[i].cell = c;
-  s[i].next = head[c];
+  p[i].cell = c;
+  p[i].next = head[c];
   head[c] = i;
 }
 
 void Engine::Impl::cell_remove(std::int32_t i, int c) {
   std::int32_t* link = &head[c];
-  while (*link != i) link = &s[*link].next;
-  *link = s[i].next;
+  while (*link != i) link = &p[*link].next;
+  *link = p[i].next;
 }
 
 void Engine::Impl::schedule(std::int32_t i) {
@@ -64,7 +80,7 @@ void Engine::Impl::schedule(std::int32_t i) {
 void Engine::Impl::predict_cell(std::int32_t i) {
   const Particle& q = p[i];
   detail::Slot& si = s[i];
-  const int cx = si.cell % ncx, cy = si.cell / ncx;
+  const int cx = p[i].cell % ncx, cy = p[i].cell / ncx;
   const double xlo = cfg.xmin + cx * cw, xhi = cfg.xmin + (cx + 1) * cw;
   const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
   const Vec2 g = cfg.gravity;
@@ -82,22 +98,36 @@ void Engine::Impl::predict_cell(std::int32_t i) {
   si.cell_dir = dir;
 }
 
-void Engine::Impl::scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx,
-                                 double vy, double rad_i) {
-  double shx = 0.0, shy = 0.0;
+bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
+  shx = 0.0;
+  shy = 0.0;
   if (cx < 0 || cx >= ncx) {
-    if (!periodic_x) return;
+    if (!periodic_x) return false;
     if (cx < 0) { cx += ncx; shx = -lx; } else { cx -= ncx; shx = lx; }
   }
   if (cy < 0 || cy >= ncy) {
-    if (!periodic_y) return;
+    if (!periodic_y) return false;
     if (cy < 0) { cy += ncy; shy = -ly; } else { cy -= ncy; shy = ly; }
   }
+  cell = cy * ncx + cx;
+  return true;
+}
+
+void Engine::Impl::scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx,
+                                 double vy, double rad_i) {
+  int cell = 0;
+  double shx = 0.0, shy = 0.0;
+  if (!neighbour_cell(cx, cy, cell, shx, shy)) return;
+  scan_list(i, head[cell], shx, shy, rx, ry, vx, vy, rad_i);
+}
+
+void Engine::Impl::scan_list(std::int32_t i, std::int32_t first, double shx, double shy, double rx,
+                             double ry, double vx, double vy, double rad_i) {
   detail::Slot& si = s[i];
   const Vec2 g = cfg.gravity;
   const bool accel = g.x != 0.0 || g.y != 0.0;
   const bool mono = ns == 1;
-  for (std::int32_t k = head[cy * ncx + cx]; k >= 0; k = s[k].next) {
+  for (std::int32_t k = first; k >= 0; k = p[k].next) {
     if (k == i) continue;
     const Particle& o = p[k];
     const double dt = now - o.t;
@@ -172,15 +202,30 @@ void Engine::Impl::predict(std::int32_t i) {
   si.coll_t = kNever;
   si.type = EventType::none;
   predict_cell(i);
-  const int cx = si.cell % ncx, cy = si.cell / ncx;
+  const int cx = p[i].cell % ncx, cy = p[i].cell / ncx;
   const double rad = radius[q.species];
+  // Two passes: read the nine list heads and start loading their first
+  // disks, then scan; for large systems the loads overlap instead of
+  // following one another.
+  std::int32_t first[9];
+  double shift[9][2];
+  int n = 0;
   for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, cx + dx, cy + dy, q.x, q.y, q.vx, q.vy, rad);
-  scan_walls_for(i, si.cell, q.x, q.y, q.vx, q.vy);
+    for (int dx = -1; dx <= 1; ++dx) {
+      int cell = 0;
+      if (!neighbour_cell(cx + dx, cy + dy, cell, shift[n][0], shift[n][1])) continue;
+      first[n] = head[cell];
+      if (first[n] >= 0) __builtin_prefetch(&p[first[n]]);
+      ++n;
+    }
+  for (int k = 0; k < n; ++k) scan_list(i, first[k], shift[k][0], shift[k][1], q.x, q.y, q.vx, q.vy, rad);
+  scan_walls_for(i, p[i].cell, q.x, q.y, q.vx, q.vy);
 }
 
 void Engine::Impl::process(std::int32_t i) {
   detail::Slot& si = s[i];
+  cal.prefetch(static_cast<std::size_t>(i));
+  if (si.type == EventType::disk) cal.prefetch(static_cast<std::size_t>(si.partner));
   if (si.cell_t <= si.coll_t) {
     cross_cell(i);
     return;
@@ -227,7 +272,7 @@ void Engine::Impl::cross_cell(std::int32_t i) {
   Particle& q = p[i];
   advance(q);
   detail::Slot& si = s[i];
-  int cx = si.cell % ncx, cy = si.cell / ncx;
+  int cx = p[i].cell % ncx, cy = p[i].cell / ncx;
   const std::uint8_t dir = si.cell_dir;
   int ncx2 = cx + (dir == 1) - (dir == 0);
   int ncy2 = cy + (dir == 3) - (dir == 2);
@@ -254,7 +299,7 @@ void Engine::Impl::cross_cell(std::int32_t i) {
     }
   }
   const int c = ncy2 * ncx + ncx2;
-  cell_remove(i, si.cell);
+  cell_remove(i, p[i].cell);
   cell_insert(i, c);
   predict_cell(i);
   const bool stale = si.type == EventType::disk &&
@@ -300,7 +345,7 @@ void Engine::Impl::collide_disks(std::int32_t i, std::int32_t j) {
   const double vn = (a.vx - b.vx) * nx + (a.vy - b.vy) * ny;
   if (vn < 0.0) {
     double e = e_disk[a.species * ns + b.species];
-    if (now - s[i].last_coll < cfg.tc || now - s[j].last_coll < cfg.tc) e = 1.0;
+    if (now - p[i].last_coll < cfg.tc || now - p[j].last_coll < cfg.tc) e = 1.0;
     const double ma = mass[a.species], mb = mass[b.species];
     const double jimp = (1.0 + e) * vn * (ma * mb / (ma + mb));  // < 0
     if (e != 1.0) integrate_energy();
@@ -315,8 +360,8 @@ void Engine::Impl::collide_disks(std::int32_t i, std::int32_t j) {
     virial -= jimp * dist;
     ++a.count;
     ++b.count;
-    s[i].last_coll = now;
-    s[j].last_coll = now;
+    p[i].last_coll = now;
+    p[j].last_coll = now;
     ++st.collisions;
     ++st.disk_collisions;
   }
@@ -332,7 +377,7 @@ void Engine::Impl::collide_surface(std::int32_t i, Vec2 n, double e, double over
   if (overlap > kRecoveryTolerance) ++st.recoveries;
   const double vn = q.vx * n.x + q.vy * n.y;
   if (vn < 0.0) {
-    if (now - s[i].last_coll < cfg.tc) e = 1.0;
+    if (now - p[i].last_coll < cfg.tc) e = 1.0;
     const double m = mass[q.species];
     if (e != 1.0) {
       integrate_energy();
@@ -341,7 +386,7 @@ void Engine::Impl::collide_surface(std::int32_t i, Vec2 n, double e, double over
     q.vx -= (1.0 + e) * vn * n.x;
     q.vy -= (1.0 + e) * vn * n.y;
     ++q.count;
-    s[i].last_coll = now;
+    p[i].last_coll = now;
     ++st.collisions;
     ++st.wall_collisions;
   }
@@ -353,7 +398,7 @@ void Engine::Impl::remove(std::int32_t i) {
   Particle& q = p[i];
   integrate_energy();
   energy -= 0.5 * mass[q.species] * (q.vx * q.vx + q.vy * q.vy);
-  cell_remove(i, s[i].cell);
+  cell_remove(i, p[i].cell);
   q.alive = 0;
   ++q.count;  // every prediction naming this slot is now stale
   s[i].coll_t = kNever;
@@ -364,6 +409,60 @@ void Engine::Impl::remove(std::int32_t i) {
   ++st.removed;
 }
 
+void Engine::Impl::reorder() {
+  const std::size_t n = p.size();
+  std::size_t alive = 0;
+  for (const Particle& q : p) alive += q.alive ? 1 : 0;
+  next_reorder = st.collisions + static_cast<std::uint64_t>(kReorderCollisionsPerDisk * static_cast<double>(alive));
+  if (alive < kReorderMinDisks) return;
+  std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Particle& q = p[i];
+    const std::uint64_t key =
+        q.alive ? (spread_bits(static_cast<std::uint32_t>(q.cell % ncx)) |
+                   (spread_bits(static_cast<std::uint32_t>(q.cell / ncx)) << 1))
+                : ~std::uint64_t{0};
+    order[i] = {key, static_cast<std::int32_t>(i)};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<std::int32_t> new_index(n);
+  for (std::size_t k = 0; k < n; ++k) new_index[static_cast<std::size_t>(order[k].second)] = static_cast<std::int32_t>(k);
+  // Apply the permutation in place (cycle by cycle): a copy of the arrays
+  // would double the peak memory of a large system.
+  std::vector<double> keys(n);
+  for (std::size_t k = 0; k < n; ++k) keys[k] = cal.key(static_cast<std::size_t>(order[k].second));
+  for (std::size_t k = 0; k < n; ++k)
+    if (s[k].type == EventType::disk) s[k].partner = new_index[static_cast<std::size_t>(s[k].partner)];
+  for (std::size_t start = 0; start < n; ++start) {
+    // new_index[k] < 0 marks a slot already placed.
+    if (new_index[start] < 0 || static_cast<std::size_t>(new_index[start]) == start) continue;
+    Particle pt = p[start];
+    detail::Slot st_slot = s[start];
+    std::size_t from = start;
+    while (true) {
+      const auto to = static_cast<std::size_t>(new_index[from]);
+      new_index[from] = -1;
+      if (to == start) {
+        p[to] = pt;
+        s[to] = st_slot;
+        break;
+      }
+      std::swap(pt, p[to]);
+      std::swap(st_slot, s[to]);
+      from = to;
+    }
+  }
+  std::fill(head.begin(), head.end(), -1);
+  free_slots.clear();
+  for (std::size_t k = n; k-- > 0;) {
+    if (p[k].alive) cell_insert(static_cast<std::int32_t>(k), p[k].cell);
+    else free_slots.push_back(static_cast<std::int32_t>(k));
+  }
+  for (std::size_t k = 0; k < n; ++k) cal.set_quiet(k, keys[k]);
+  cal.rebuild();
+}
+
+
 void Engine::Impl::build_all() {
   cal.resize(std::max<std::size_t>(p.size(), 1));
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -373,9 +472,15 @@ void Engine::Impl::build_all() {
   }
   cal.rebuild();
   started = true;
+  reorder();
 }
 
 // ---------------------------------------------------------------- public
+
+void Engine::reserve(std::size_t n) {
+  impl_->p.reserve(n);
+  impl_->s.reserve(n);
+}
 
 void Engine::start() {
   if (!impl_->started) impl_->build_all();
@@ -392,6 +497,7 @@ void Engine::run_until(double t, std::uint64_t max_collisions) {
     if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;
     m.now = tk;
     m.process(static_cast<std::int32_t>(i));
+    if (m.st.collisions >= m.next_reorder) m.reorder();
   }
   if (m.st.collisions >= max_collisions) return;
   if (t != kNever && t > m.now) m.now = t;
@@ -424,7 +530,7 @@ Stats Engine::stats_light() const {
 }
 
 const EngineConfig& Engine::config() const { return impl_->cfg; }
-const std::vector<Particle>& Engine::particles() const { return impl_->p; }
+std::span<const Particle> Engine::particles() const { return {impl_->p.data(), impl_->p.size()}; }
 
 void Engine::reset_measurement() {
   Impl& m = *impl_;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "calendar.hpp"
+#include "huge_alloc.hpp"
 #include "granular/engine.hpp"
 
 namespace granular {
@@ -19,11 +20,8 @@ enum class EventType : std::uint8_t { none, disk, wall, vertex };
 struct Slot {
   double coll_t;          // predicted collision time (kNever: none)
   double cell_t;          // next cell-face crossing
-  double last_coll;       // time of the previous collision (TC model)
   std::int32_t partner;   // disk slot, wall or vertex index
   std::uint32_t pcount;   // partner's collision counter when predicted
-  std::int32_t cell;      // current cell
-  std::int32_t next;      // next slot in the cell's list (-1: end)
   EventType type;
   std::uint8_t cell_dir;  // 0: -x, 1: +x, 2: -y, 3: +y
 };
@@ -46,13 +44,13 @@ struct Engine::Impl {
   int ncx = 1, ncy = 1;
   double cw = 1, ch = 1, lx = 1, ly = 1;
   bool periodic_x = false, periodic_y = false;
-  std::vector<std::int32_t> head;            // cell -> first slot
+  std::vector<std::int32_t, detail::HugeAlloc<std::int32_t>> head;  // cell -> first slot
   std::vector<std::int32_t> wall_start, wall_list;      // CSR cell -> walls
   std::vector<std::int32_t> vertex_start, vertex_list;  // CSR cell -> vertices
   std::vector<detail::WallGeom> walls;
   // Particles.
-  std::vector<Particle> p;
-  std::vector<detail::Slot> s;
+  std::vector<Particle, detail::HugeAlloc<Particle>> p;
+  std::vector<detail::Slot, detail::HugeAlloc<detail::Slot>> s;
   std::vector<std::int32_t> free_slots;
   detail::Calendar cal;
   bool started = false;
@@ -65,7 +63,9 @@ struct Engine::Impl {
   double energy_integral = 0.0;
   double energy_since = 0.0;  // time energy_integral is accumulated to
   std::uint64_t events = 0;
+  std::uint64_t next_reorder = 0;  // collision count of the next spatial sort
 
+  void reorder();
   void init(EngineConfig c);
   // Geometry helpers.
   int cell_of(double x, double y) const;
@@ -76,6 +76,9 @@ struct Engine::Impl {
   void advance(Particle& q) const;
   void predict(std::int32_t i);
   void predict_cell(std::int32_t i);
+  bool neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const;
+  void scan_list(std::int32_t i, std::int32_t first, double shx, double shy, double rx, double ry,
+                 double vx, double vy, double rad_i);
   void scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx, double vy,
                      double sig_i);
   void scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx, double vy);

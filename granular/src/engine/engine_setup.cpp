@@ -196,7 +196,7 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
         if (!periodic_y) continue;
         if (y2 < 0) { y2 += ncy; shy = -ly; } else { y2 -= ncy; shy = ly; }
       }
-      for (std::int32_t k = head[y2 * ncx + x2]; k >= 0; k = s[k].next) {
+      for (std::int32_t k = head[y2 * ncx + x2]; k >= 0; k = p[k].next) {
         if (k == skip) continue;
         const Particle& o = p[k];
         const double dt = now - o.t;
@@ -231,9 +231,9 @@ std::int32_t Engine::Impl::add_slot(Vec2 r, Vec2 v, int species) {
     s.push_back({});
     if (started) cal.grow(p.size());
   }
-  p[i] = Particle{r.x, r.y, v.x, v.y, now, count, static_cast<std::uint16_t>(species), 1};
-  s[i] = detail::Slot{detail::kNever, detail::kNever, -detail::kNever, -1, 0, 0, -1,
-                      detail::EventType::none, 0};
+  p[i] = Particle{r.x, r.y, v.x, v.y, now, -detail::kNever, count, -1, 0,
+                  static_cast<std::uint16_t>(species), 1};
+  s[i] = detail::Slot{detail::kNever, detail::kNever, -1, 0, detail::EventType::none, 0};
   cell_insert(i, cell_of(r.x, r.y));
   integrate_energy();
   energy += 0.5 * mass[static_cast<std::size_t>(species)] * norm2(v);

@@ -29,6 +29,10 @@ constexpr double kOutlierFloorCells = 1.0;
 constexpr double kParabolaReach = 0.5;
 // Fewest points for the parabola to stand in for the stagnation station.
 constexpr int kMinParabolaPoints = 5;
+// The parabola's vertex and the stagnation station's shock agree within
+// this many of the station's 95% half-widths, or this many lattice spacings.
+constexpr double kVertexAgreeCi = 3.0;
+constexpr double kVertexAgreeCells = 3.0;
 // Two stations closer than this (in lattice spacings) are the same point.
 constexpr double kSamePointCells = 1e-6;
 // Shock windows tried per station, in units of shockfit.window.
@@ -139,7 +143,25 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
   r.stagnation = fit_station(lat, field, d, p, -1, g.nose, {-1.0, 0.0});
   r.stagnation_valid = std::isfinite(r.stagnation.distance);
   const double attached_limit = std::max(kAttachedCells * cell, kAttachedFraction * L);
-  const bool detached = r.stagnation.accepted && r.stagnation.distance > attached_limit;
+  // Near the axis a bow shock is a parabola x = x0 + c y^2 (Billig's
+  // hyperbola to second order), fitted through every accepted point there.
+  std::vector<scene::Vec2> near_axis, axis_normals;
+  std::vector<double> axis_sigma;
+  for (const StationFit& f : r.stations)
+    if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) {
+      near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
+      axis_normals.push_back(f.normal);
+      axis_sigma.push_back(f.ci / kCi95);
+    }
+  const bool have_parabola = near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints);
+  const auto [x0, c] = have_parabola ? fit_axis_parabola(near_axis) : std::pair{kNaN, kNaN};
+  // A detached shock needs a jump on the stagnation line away from the nose
+  // and, where the stations near the axis allow the check, a vertex there
+  // too: one noisy profile alone must not turn an attached shock into a bow
+  // shock.
+  const double vertex_tol = std::max(kVertexAgreeCi * r.stagnation.ci, kVertexAgreeCells * cell);
+  const bool detached = r.stagnation.accepted && r.stagnation.distance > attached_limit &&
+                        (!have_parabola || std::abs(x0 - r.stagnation.shock.x) <= vertex_tol);
 
   auto is_nose_station = [&](const StationFit& f) {
     return scene::norm(f.surface - g.nose) < kSamePointCells * cell && f.normal.x < 0 &&
@@ -151,23 +173,13 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
     r.standoff_stagnation = r.stagnation.distance / L;
     r.standoff = r.standoff_stagnation;
     r.standoff_ci = r.stagnation.ci / L;
-    // Near the axis the shock is a parabola x = x0 + c y^2 (Billig's
-    // hyperbola to second order). Its vertex, fitted through every accepted
-    // point there, is the shock on the stagnation line with the noise of
-    // many stations instead of one: the standoff, with a bootstrap interval.
-    std::vector<scene::Vec2> near_axis, normals;
-    std::vector<double> sig;
-    for (const StationFit& f : r.stations)
-      if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) {
-        near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
-        normals.push_back(f.normal);
-        sig.push_back(f.ci / kCi95);
-      }
-    if (near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints)) {
-      const auto [x0, c] = fit_axis_parabola(near_axis);
+    // The parabola's vertex is the shock on the stagnation line with the
+    // noise of many stations instead of one: the standoff, with a bootstrap
+    // interval.
+    if (have_parabola) {
       r.vertex_x = x0;
       r.curvature_radius = c > 0 ? 1.0 / (2.0 * c) / L : kNaN;
-      const Interval iv = bootstrap(near_axis, normals, sig, p.bootstrap, p.seed,
+      const Interval iv = bootstrap(near_axis, axis_normals, axis_sigma, p.bootstrap, p.seed,
                                     [](const std::vector<scene::Vec2>& q) { return fit_axis_parabola(q).first; });
       if (std::isfinite(x0) && std::isfinite(iv.lo) && x0 < g.nose.x) {
         r.standoff = (g.nose.x - x0) / L;

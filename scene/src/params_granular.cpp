@@ -20,7 +20,7 @@ GranularParams parse_granular(Section& s) {
   p.mach = s.opt_number("mach", positive());
   p.inflow_packing_fraction =
       s.number("inflow_packing_fraction", p.inflow_packing_fraction, {0.0, 0.6, true, false});
-  p.body_diameters = s.number("body_diameters", p.body_diameters, {2.0, 1e5, false, false});
+  p.body_diameters = s.opt_number("body_diameters", {2.0, 1e5, false, false});
   p.lattice_nx = static_cast<int>(s.integer("lattice_nx", p.lattice_nx, 2, 100000));
   p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
   p.warmup = s.opt_number("warmup", non_negative());
@@ -43,7 +43,7 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
   emit_vec2(e, "gravity", p.gravity);
   emit_opt(e, "mach", p.mach);
   emit_kv(e, "inflow_packing_fraction", p.inflow_packing_fraction);
-  emit_kv(e, "body_diameters", p.body_diameters);
+  emit_opt(e, "body_diameters", p.body_diameters);
   emit_kv(e, "lattice_nx", p.lattice_nx);
   emit_kv(e, "lattice_ny", p.lattice_ny);
   emit_opt(e, "warmup", p.warmup);

@@ -42,17 +42,22 @@ TEST(FlowFields, UniformGasGivesItsStateAndBodyCellsAreMarked) {
   const granular::Binner binner(f, g);
   std::mt19937_64 rng(7);
   std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> ux(f.config.xmin, f.config.xmax), uy(f.config.ymin, f.config.ymax);
+  // Disks over the lattice's domain (the simulated one is larger for a disc).
+  const scene::Domain& d = f.domain;
+  std::uniform_real_distribution<double> ux(d.xmin * f.scale, d.xmax * f.scale), uy(d.ymin * f.scale, d.ymax * f.scale);
   const double n = 0.05 / (std::numbers::pi / 4);
-  const auto per_snap = static_cast<int>(n * (f.config.xmax - f.config.xmin) * (f.config.ymax - f.config.ymin));
+  const auto per_snap = static_cast<int>(n * d.width() * d.height() * f.scale * f.scale);
   std::vector<granular::FieldSums> blocks(2, granular::FieldSums(144));
   const double big_u = 4.0, temp = 2.0;
   for (auto& blk : blocks)
     for (int s = 0; s < 300; ++s) {
       for (int k = 0; k < per_snap; ++k) {
         const scene::Vec2 r{ux(rng), uy(rng)};
-        if (scene::point_in_body(f.body, granular::to_scene(f, r))) continue;
-        blk.add(binner.cell_of(r), {big_u + std::sqrt(temp) * gauss(rng), std::sqrt(temp) * gauss(rng)});
+        // Centres stay a radius off the wall (as the fields assume).
+        if (scene::signed_distance(f.body, granular::to_scene(f, r)) < 0.5 / f.scale) continue;
+        const std::size_t cell = binner.cell_of(r);
+        ASSERT_NE(cell, granular::Binner::npos);
+        blk.add(cell, {big_u + std::sqrt(temp) * gauss(rng), std::sqrt(temp) * gauss(rng)});
       }
       blk.end_snapshot();
     }

@@ -90,9 +90,15 @@ TEST(FlowSetup, GranularMachOverridesFreestream) {
 
 TEST(FlowSetup, ParticlesFixTheScale) {
   scene::Scene s = scene::parse_scene(kWedge);
+  s.granular.body_diameters.reset();
   s.granular.particles = 2000;
+  EXPECT_NEAR(granular::make_flow_setup(s).expected_particles, 2000.0, 1e-6);
+  // Neither given: the default count; the wedge M3/10 body is then ~300 d.
+  s.granular.particles.reset();
+  s.granular.inflow_packing_fraction = 0.1;
   const granular::FlowSetup f = granular::make_flow_setup(s);
-  EXPECT_NEAR(f.expected_particles, 2000.0, 1e-6);
+  EXPECT_NEAR(f.expected_particles, scene::kDefaultFlowParticles, 1e-6);
+  EXPECT_NEAR(f.body.length * f.scale, 300.0, 3.0);
 }
 
 TEST(FlowSetup, BodyTouchingTheDomainEdgeIsAClearError) {

@@ -27,7 +27,11 @@ double granular_mach(const scene::Scene& s);
 
 struct FlowSetup {
   scene::BodyGeometry body;     // scene units
-  scene::Domain domain;         // scene units: the lattice spans it
+  scene::Domain domain;         // scene units: the lattice spans it (scene_domain)
+  // Simulated rectangle, scene units: the domain, extended upstream and
+  // sideways for blunt bodies, whose granular bow shock stands off further
+  // than the gas-dynamic estimate the scene domain is sized for.
+  scene::Domain sim_domain;
   double scale = 1.0;           // particle diameters per scene length unit
   double mach = 3.0;            // granular Mach number U / c
   double packing_fraction = 0;  // inflow

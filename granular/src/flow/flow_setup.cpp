@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
 
 namespace granular {
 
@@ -14,6 +15,16 @@ namespace {
 constexpr double kDiskArea = std::numbers::pi / 4.0;
 // Sub-cells per side when measuring the fluid (non-body) area of the domain.
 constexpr int kAreaSamples = 256;
+// Room added upstream of (and above) the scene domain for blunt bodies, in
+// body half-heights: the granular gas (gamma = 2, dense) compresses less
+// than air, so its bow shock stands 2-3 times further off than Billig's
+// air correlation that sizes the scene domain (disc M4: ~1.2 radii instead
+// of 0.5), which would put the shock on the inflow boundary.
+constexpr double kBluntUpstreamMargin = 1.0;
+constexpr double kBluntSideMargin = 0.5;
+// The granular gas is gamma = 2 in the dilute limit (attachment test).
+constexpr double kGranularGamma = 2.0;
+constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Closest packing of disks: an inflow at or above it cannot exist; beyond
 // ~0.7 the fluid crystallises and Henderson's Z is meaningless.
 constexpr double kMaxInflowPacking = 0.6;
@@ -63,23 +74,40 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
   f.number_density = f.packing_fraction / kDiskArea;
   f.sound_speed = sound_speed(f.packing_fraction, 1.0);
 
+  f.sim_domain = f.domain;
+  const bool attached_wedge =
+      s.body->kind == scene::BodyKind::wedge &&
+      scene::oblique_shock_beta(f.mach, s.body->angle_deg * kDegToRad, kGranularGamma).has_value();
+  if (!attached_wedge && !s.domain_override) {
+    double ylo = 0, yhi = 0;
+    for (const scene::Vec2 q : f.body.polyline) {
+      ylo = std::min(ylo, q.y);
+      yhi = std::max(yhi, q.y);
+    }
+    const double h = f.domain.symmetric ? yhi : 0.5 * (yhi - ylo);
+    f.sim_domain.xmin -= kBluntUpstreamMargin * h;
+    f.sim_domain.ymax += kBluntSideMargin * h;
+    if (!f.sim_domain.symmetric) f.sim_domain.ymin -= kBluntSideMargin * h;
+  }
   const double fluid_scene = fluid_area_scene(f.body, f.domain);
-  // Scale: `particles` (disks in the domain at the inflow density), when
-  // given, fixes the body size in diameters; otherwise body_diameters does.
-  const double body_len = f.body.length;
-  f.scale = p.body_diameters / body_len;
-  if (p.particles)
-    f.scale = std::sqrt(static_cast<double>(*p.particles) / (f.number_density * fluid_scene));
+  // Scale: body_diameters when given, else `particles` (disks in the domain
+  // at the inflow density), else the default particle count.
+  if (p.body_diameters) {
+    f.scale = *p.body_diameters / f.body.length;
+  } else {
+    const double particles = p.particles ? static_cast<double>(*p.particles) : scene::kDefaultFlowParticles;
+    f.scale = std::sqrt(particles / (f.number_density * fluid_scene));
+  }
   f.fluid_area = fluid_scene * f.scale * f.scale;
   f.expected_particles = f.number_density * f.fluid_area;
 
   FlowConfig& c = f.config;
-  c.xmin = f.domain.xmin * f.scale;
-  c.xmax = f.domain.xmax * f.scale;
-  c.ymin = f.domain.ymin * f.scale;
-  c.ymax = f.domain.ymax * f.scale;
-  c.symmetric = f.domain.symmetric;
-  c.body_chains = body_chains(f.body, f.domain);
+  c.xmin = f.sim_domain.xmin * f.scale;
+  c.xmax = f.sim_domain.xmax * f.scale;
+  c.ymin = f.sim_domain.ymin * f.scale;
+  c.ymax = f.sim_domain.ymax * f.scale;
+  c.symmetric = f.sim_domain.symmetric;
+  c.body_chains = body_chains(f.body, f.sim_domain);
   for (auto& chain : c.body_chains)
     for (scene::Vec2& q : chain) q = to_engine(f, q);
   c.inflow_speed = f.mach * f.sound_speed;
@@ -110,6 +138,7 @@ nlohmann::json describe(const FlowSetup& f) {
       {"diameters_per_scene_unit", f.scale},
       {"domain_diameters", {c.xmin, c.xmax, c.ymin, c.ymax}},
       {"domain_scene", {f.domain.xmin, f.domain.xmax, f.domain.ymin, f.domain.ymax}},
+      {"simulated_domain_scene", {f.sim_domain.xmin, f.sim_domain.xmax, f.sim_domain.ymin, f.sim_domain.ymax}},
       {"symmetric", c.symmetric},
       {"expected_particles", f.expected_particles},
       {"flow_through_time", f.flow_through_time},

@@ -8,6 +8,10 @@ namespace scene {
 
 // `granular:` section. Lengths in particle diameters, masses in particle
 // masses, times in d / sqrt(T_inflow/m) unless stated (docs/units.md).
+// Disks in a flow domain at the inflow density when neither
+// granular.body_diameters nor granular.particles is given.
+inline constexpr double kDefaultFlowParticles = 9200.0;
+
 struct GranularParams {
   // Box scenes: exactly as ../shared/contract.md.
   std::optional<std::int64_t> particles;
@@ -25,7 +29,11 @@ struct GranularParams {
   // Defaults give a clean wedge M3/10 shock known to +-0.5 deg in ~10 s on
   // 2 cores (docs/granular_flow.md): mean free path ~2 d, body 300 d.
   double inflow_packing_fraction = 0.1;
-  double body_diameters = 300.0;       // body length in particle diameters
+  // Body length in particle diameters. Unset: the scale follows from
+  // `particles` (disks in the domain at the inflow density), and with neither
+  // given from kDefaultFlowParticles (the wedge M3/10 domain then holds a
+  // 300 d wedge; blunt bodies, with larger domains, get smaller bodies).
+  std::optional<double> body_diameters;
   int lattice_nx = 200;
   int lattice_ny = 200;
   std::optional<double> warmup;        // flow-through times; unset: detect steady state

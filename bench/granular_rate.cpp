@@ -1,7 +1,7 @@
 // Benchmark (not a test): collisions per second of elastic hard disks at
 // packing fraction 0.40 in a periodic box, for several N, and the memory
 // the engine holds per particle. Usage:
-//   granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] N [N ...]
+//   granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0] N [N ...]
 // Prints one line per N: median rate over the repeats (after a melt of
 // 5 collisions per particle that is not timed).
 #include <algorithm>
@@ -43,7 +43,7 @@ long peak_rss_kb() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  double nu = 0.4, per_particle = 20.0;
+  double nu = 0.4, per_particle = 20.0, min_cell = 0.0;
   int repeats = 3;
   std::vector<long> sizes;
   for (int i = 1; i < argc; ++i) {
@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
     if (a == "--nu" && i + 1 < argc) nu = std::atof(argv[++i]);
     else if (a == "--per-particle" && i + 1 < argc) per_particle = std::atof(argv[++i]);
     else if (a == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
+    else if (a == "--cell" && i + 1 < argc) min_cell = std::atof(argv[++i]);
     else sizes.push_back(std::atol(a.c_str()));
   }
   if (sizes.empty()) sizes = {10000, 32000, 1000000};
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
       b.width = b.height = std::sqrt(static_cast<double>(n) * std::numbers::pi / 4.0 / nu);
       b.packing_fraction = nu;
       b.seed = static_cast<std::uint64_t>(r + 1);
+      b.min_cell = min_cell;
       granular::Engine e = granular::make_box_engine(b);
       e.run_collisions(static_cast<std::uint64_t>(kMeltPerParticle * static_cast<double>(n)));
       const auto count = static_cast<std::uint64_t>(per_particle * static_cast<double>(n));

@@ -15,6 +15,7 @@ struct BoxSetup {
   double restitution = 1.0, restitution_wall = 1.0, tc = 0.0;
   Vec2 gravity{0, 0};
   std::uint64_t seed = 1;
+  double min_cell = 0.0;  // EngineConfig::min_cell (0: one diameter)
 };
 
 // Validates the scene's box and granular sections (InputError naming the

@@ -58,6 +58,7 @@ class Calendar {
   // Sets without re-ranking (bulk load; call rebuild() after).
   void set_quiet(std::size_t slot, double t) { node_[slot + leaves_].key = t; }
   std::uint32_t top() const { return node_[1].slot; }
+  double top_time() const { return node_[1].key; }
   double key(std::size_t slot) const { return node_[slot + leaves_].key; }
   double bytes() const { return static_cast<double>(node_.size() * sizeof(Node)); }
 

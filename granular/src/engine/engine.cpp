@@ -491,7 +491,7 @@ void Engine::run_until(double t, std::uint64_t max_collisions) {
   if (!m.started) m.build_all();
   while (true) {
     const std::uint32_t i = m.cal.top();
-    const double tk = m.cal.key(i);
+    const double tk = m.cal.top_time();
     if (!(tk <= t) || tk == kNever) break;
     if (m.st.collisions >= max_collisions) return;
     if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;

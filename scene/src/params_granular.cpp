@@ -16,6 +16,7 @@ GranularParams parse_granular(Section& s) {
   p.collisions = s.opt_number("collisions", positive());
   p.time = s.opt_number("time", positive());
   p.tc = s.number("tc", p.tc, non_negative());
+  p.checkpoint_interval = s.opt_number("checkpoint_interval", positive());
   p.gravity = s.vec2("gravity", p.gravity);
   p.mach = s.opt_number("mach", positive());
   p.inflow_packing_fraction =
@@ -40,6 +41,7 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
   emit_opt(e, "collisions", p.collisions);
   emit_opt(e, "time", p.time);
   emit_kv(e, "tc", p.tc);
+  emit_opt(e, "checkpoint_interval", p.checkpoint_interval);
   emit_vec2(e, "gravity", p.gravity);
   emit_opt(e, "mach", p.mach);
   emit_kv(e, "inflow_packing_fraction", p.inflow_packing_fraction);

@@ -25,6 +25,14 @@ std::string out_dir(const std::string& name) {
   return d.string();
 }
 
+RunOptions opts(const std::string& name, const std::string& restart = "", std::uint64_t stop = 0) {
+  RunOptions o;
+  o.out_dir = out_dir(name);
+  o.restart = restart;
+  o.stop_after_collisions = stop;
+  return o;
+}
+
 TEST(EngineBoxRun, ContractSceneWritesSummary) {
   const scene::Scene s = scene::parse_scene(R"(
 box: {width: 100, height: 100, periodic: true}
@@ -34,8 +42,9 @@ granular:
   seed: 1
   collisions: 2.0e5
 )");
-  const std::string dir = out_dir("contract");
-  const nlohmann::json j = run_box_scene(s, {dir, 1});
+  const RunOptions o = opts("contract");
+  const std::string dir = o.out_dir;
+  const nlohmann::json j = run_box_scene(s, o);
   ASSERT_TRUE(std::filesystem::exists(dir + "/summary.json"));
   const auto disk = nlohmann::json::parse(scene::read_file(dir + "/summary.json"));
   for (const char* key : {"particles", "collisions", "wall_seconds", "collisions_per_second", "energy_initial",
@@ -57,11 +66,29 @@ TEST(EngineBoxRun, WalledInelasticBoxByTime) {
 box: {width: 30, height: 30, periodic: false}
 granular: {packing_fraction: 0.2, restitution: 0.8, tc: 1.0e-4, time: 5.0}
 )");
-  const nlohmann::json j = run_box_scene(s, {out_dir("walled"), 1});
+  const nlohmann::json j = run_box_scene(s, opts("walled"));
   EXPECT_NEAR(j["time"].get<double>(), 5.0, 1e-12);
   EXPECT_LT(j["energy_final"].get<double>(), j["energy_initial"].get<double>());
   EXPECT_GT(j["wall_collisions"].get<double>(), 0.0);
   EXPECT_LE(j["max_overlap"].get<double>(), kRoundOffOverlap);
+}
+
+TEST(EngineBoxRun, StoppedRunRestartsFromCheckpointBitIdentically) {
+  const scene::Scene s = scene::parse_scene(R"(
+box: {width: 40, height: 40, periodic: true}
+granular: {packing_fraction: 0.35, restitution: 0.95, tc: 1.0e-4, seed: 4, collisions: 2.0e5,
+           checkpoint_interval: 5.0e4}
+)");
+  const nlohmann::json whole = run_box_scene(s, opts("ck_whole"));
+  const RunOptions stop = opts("ck_stop", "", 130000);
+  const nlohmann::json part = run_box_scene(s, stop);
+  EXPECT_TRUE(part["interrupted"].get<bool>());
+  EXPECT_EQ(part["collisions"].get<double>(), 130000.0);
+  const nlohmann::json rest = run_box_scene(s, opts("ck_rest", stop.out_dir + "/checkpoint.bin"));
+  EXPECT_FALSE(rest["interrupted"].get<bool>());
+  for (const char* key : {"collisions", "time", "energy_initial", "energy_final", "max_overlap",
+                          "compressibility_factor", "mean_temperature", "momentum"})
+    EXPECT_EQ(rest[key], whole[key]) << key;
 }
 
 // The scene parser checks these too; resolve_box repeats the checks for

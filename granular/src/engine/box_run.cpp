@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -126,36 +128,98 @@ Engine make_box_engine(const BoxSetup& b) {
   return eng;
 }
 
+namespace {
+
+constexpr char kBoxMagic[8] = {'G', 'R', 'A', 'N', 'B', 'O', 'X', '1'};
+
+// Run phase and the numbers a restarted run needs, stored before the engine.
+struct BoxCheckpoint {
+  std::int32_t phase = 0;  // 0: melting, 1: measuring
+  double energy_initial = 0.0;
+};
+
+void write_checkpoint(const std::string& path, const BoxCheckpoint& c, const Engine& eng) {
+  scene::write_stream_atomic(path, [&](std::ostream& os) {
+    os.write(kBoxMagic, sizeof(kBoxMagic));
+    os.write(reinterpret_cast<const char*>(&c.phase), sizeof(c.phase));
+    os.write(reinterpret_cast<const char*>(&c.energy_initial), sizeof(c.energy_initial));
+    eng.save(os);
+  });
+}
+
+Engine read_checkpoint(const std::string& path, BoxCheckpoint& c) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw scene::InputError(path + ": cannot open checkpoint");
+  char magic[sizeof(kBoxMagic)] = {};
+  in.read(magic, sizeof(magic));
+  in.read(reinterpret_cast<char*>(&c.phase), sizeof(c.phase));
+  in.read(reinterpret_cast<char*>(&c.energy_initial), sizeof(c.energy_initial));
+  if (!in || std::memcmp(magic, kBoxMagic, sizeof(kBoxMagic)) != 0)
+    throw scene::InputError(path + ": not a granular box checkpoint");
+  return Engine::load(in);
+}
+
+}  // namespace
+
 nlohmann::json run_box_scene(const scene::Scene& s, const RunOptions& o) {
   const BoxSetup b = resolve_box(s);
   const scene::GranularParams& g = s.granular;
-  Engine eng = make_box_engine(b);
+  BoxCheckpoint ck;
+  Engine eng = o.restart.empty() ? make_box_engine(b) : read_checkpoint(o.restart, ck);
   eng.start();
-  const Stats s0 = eng.stats();
+  if (o.restart.empty()) ck.energy_initial = eng.stats().kinetic_energy;
+  if (!o.restart.empty() && eng.stats().particles != static_cast<std::size_t>(b.particles))
+    throw scene::InputError(o.restart + ": checkpoint does not match the scene's box (particle count)");
   const double n = static_cast<double>(b.particles);
   const bool by_time = g.time.has_value() && !g.collisions.has_value();
   const double total = by_time ? *g.time : g.collisions.value_or(kDefaultCollisionsPerParticle * n);
+  const std::string ck_path = o.out_dir + "/checkpoint.bin";
+  const auto ck_every = static_cast<std::uint64_t>(g.checkpoint_interval.value_or(0.0));
+  std::uint64_t next_ck = ck_every ? (eng.stats_light().collisions / ck_every + 1) * ck_every : 0;
+  if (ck_every) scene::make_dirs(o.out_dir);
+  bool stopped = false;
+  auto should_stop = [&] {
+    stopped = stopped || scene::interrupted() ||
+              (o.stop_after_collisions && eng.stats_light().collisions >= o.stop_after_collisions);
+    return stopped;
+  };
   // The first half melts the lattice; the equation of state and the
   // temperature are measured over the second half.
   const auto clock0 = std::chrono::steady_clock::now();
   scene::Progress progress("granular " + s.name, total, by_time ? "time" : "collisions");
   auto run_to = [&](double target) {
-    while (!scene::interrupted()) {
-      const Stats st = eng.stats_light();
-      const double done = by_time ? eng.time() : static_cast<double>(st.collisions);
+    while (!should_stop()) {
+      const std::uint64_t coll = eng.stats_light().collisions;
+      const double done = by_time ? eng.time() : static_cast<double>(coll);
       if (done >= target) break;
+      // Chunks end at checkpoints and at stop_after_collisions; chunking
+      // does not change the sequence of events.
+      std::uint64_t chunk = kChunk;
+      if (next_ck) chunk = std::min(chunk, next_ck - coll);
+      if (o.stop_after_collisions > coll) chunk = std::min(chunk, o.stop_after_collisions - coll);
       if (by_time) {
-        eng.run_until(std::min(target, eng.time() + std::max(target / 100.0, 1e-12)));
+        eng.run_until(std::min(target, eng.time() + std::max(target / 100.0, 1e-12)), coll + chunk);
       } else {
         const auto left = static_cast<std::uint64_t>(target - done);
-        eng.run_collisions(std::min<std::uint64_t>(std::max<std::uint64_t>(left, 1), kChunk));
+        eng.run_collisions(std::min<std::uint64_t>(std::max<std::uint64_t>(left, 1), chunk));
       }
-      progress.update(by_time ? eng.time() : static_cast<double>(eng.stats_light().collisions));
+      const std::uint64_t now_coll = eng.stats_light().collisions;
+      if (next_ck && now_coll >= next_ck) {
+        write_checkpoint(ck_path, ck, eng);
+        next_ck += ck_every;
+      }
+      progress.update(by_time ? eng.time() : static_cast<double>(now_coll));
     }
   };
-  run_to(0.5 * total);
-  eng.reset_measurement();
-  run_to(total);
+  if (ck.phase == 0) {
+    run_to(0.5 * total);
+    if (!should_stop()) {
+      eng.reset_measurement();
+      ck.phase = 1;
+    }
+  }
+  if (ck.phase == 1) run_to(total);
+  if (ck_every) write_checkpoint(ck_path, ck, eng);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
   progress.finish();
   const Stats s1 = eng.stats();
@@ -167,7 +231,7 @@ nlohmann::json run_box_scene(const scene::Scene& s, const RunOptions& o) {
   j["recoveries"] = s1.recoveries;
   j["wall_seconds"] = wall;
   j["collisions_per_second"] = wall > 0 ? static_cast<double>(s1.collisions) / wall : 0.0;
-  j["energy_initial"] = s0.kinetic_energy;
+  j["energy_initial"] = ck.energy_initial;
   j["energy_final"] = s1.kinetic_energy;
   j["max_overlap"] = s1.max_overlap;
   j["packing_fraction"] = b.packing_fraction;
@@ -184,7 +248,7 @@ nlohmann::json run_box_scene(const scene::Scene& s, const RunOptions& o) {
   j["seed"] = b.seed;
   j["periodic"] = b.periodic;
   j["bytes_per_particle"] = eng.bytes_per_particle();
-  j["interrupted"] = scene::interrupted();
+  j["interrupted"] = stopped;
   scene::make_dirs(o.out_dir);
   scene::write_json_atomic(o.out_dir + "/summary.json", j);
   return j;

@@ -22,6 +22,7 @@ struct GranularParams {
   std::uint64_t seed = 1;
   std::optional<double> collisions;    // stop after this many collisions
   std::optional<double> time;          // or after this simulated time
+  std::optional<double> checkpoint_interval;  // box scenes: collisions between OUT/checkpoint.bin writes
   double tc = 1e-6;                    // TC model: collision within tc of the last is elastic
   Vec2 gravity{0.0, 0.0};              // uniform force per unit mass
   // Flow scenes.

@@ -15,6 +15,7 @@ with open(dat, 'w') as f:
 xr = (L['x0'], L['x0'] + L['nx'] * L['dx']); yr = (L['y0'], L['y0'] + L['ny'] * L['dy'])
 ratio = (yr[1] - yr[0]) / (xr[1] - xr[0])
 gp = f"""set terminal pngcairo size 900,{int(900*ratio)+80}
+set termoption noenhanced
 set output '{sys.argv[3]}'
 set title '{sys.argv[4]}'
 set xrange [{xr[0]}:{xr[1]}]; set yrange [{yr[0]}:{yr[1]}]

@@ -180,6 +180,8 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
 
   GmshJob job;
   job.recombine = mp.recombine;
+  job.frontal = mp.algorithm == "frontal";
+  job.smoothing = mp.smoothing;
   job.msh_path = (stage / "mesh.msh").string();
 
   double scale = 1.0, calibration = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
@@ -300,6 +302,8 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   j["outlet_moved"] = region.outlet_moved;
   j["patches"] = types;
   j["recombine"] = mp.recombine;
+  j["algorithm"] = mp.algorithm;
+  j["smoothing"] = mp.smoothing;
   j["check_mesh_failures"] = check.failures;
   j["png"] = pngs;
   j["plot_error"] = plot_error;

@@ -19,17 +19,18 @@ namespace {
 constexpr int kTriangle = 2, kQuad = 3;
 // Relative distance (body lengths) under which two boundary points are one.
 constexpr double kSamePoint = 1e-10;
-// Speed decides (the budget is 10 s for 100k cells; CPU seconds for ~98k
-// cells measured on this machine, see docs/bench_meshgen.md):
-//   Delaunay + simple recombination, no smoothing, no topology optimisation  1.9 s
-//   Frontal-Delaunay + simple recombination + 2 smoothing passes              7.7 s
-//   Frontal-Delaunay + Blossom                                              > 90 s
+// Speed and cell quality decide (the budget is 10 s for 100k cells). CPU
+// seconds, max non-orthogonality and skewness for 100k cells of wedge_M3_10
+// (docs/meshgen.md):
+//   Delaunay, simple recombination, 0 smoothing passes    4.2 s  55 deg  1.35
+//   Delaunay, simple recombination, 1 pass (default)      6.3 s  32 deg  0.89
+//   Frontal-Delaunay, simple recombination, 2 passes      7.7 s  33 deg  0.77
+//   Frontal-Delaunay + Blossom (all quads)               > 90 s
 // Frontal-Delaunay for Quads (algorithm 8) would pair up best but segfaults
-// in Debian's gmsh 4.8.4 on every surface tried. checkMesh passes on the
-// Delaunay grids (non-orthogonality and skewness in docs/meshgen.md).
-constexpr int kAlgorithmDelaunay = 5;
+// in Debian's gmsh 4.8.4 on every surface tried. Topology optimisation after
+// recombination costs time and is left off.
+constexpr int kAlgorithmDelaunay = 5, kAlgorithmFrontal = 6;  // mesh.algorithm
 constexpr int kSimpleRecombination = 0;
-constexpr int kSmoothingSteps = 0;
 constexpr int kRecombineOptimizeTopology = 0;
 
 // gmsh keeps global state: initialise once per process, one mesh at a time.
@@ -50,10 +51,10 @@ void set_options(const GmshJob& job) {
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
   gmsh::option::setNumber("General.NumThreads", 1);
-  gmsh::option::setNumber("Mesh.Algorithm", kAlgorithmDelaunay);
+  gmsh::option::setNumber("Mesh.Algorithm", job.frontal ? kAlgorithmFrontal : kAlgorithmDelaunay);
   gmsh::option::setNumber("Mesh.RecombineAll", job.recombine ? 1 : 0);
   gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kSimpleRecombination);
-  gmsh::option::setNumber("Mesh.Smoothing", kSmoothingSteps);
+  gmsh::option::setNumber("Mesh.Smoothing", job.smoothing);
   gmsh::option::setNumber("Mesh.RecombineOptimizeTopology", kRecombineOptimizeTopology);
   // Sizes come from the callback alone.
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);

@@ -20,6 +20,8 @@ struct PlaneMesh {
 
 struct GmshJob {
   bool recombine = true;
+  bool frontal = false;   // Frontal-Delaunay instead of Delaunay
+  int smoothing = 0;      // Laplacian smoothing passes
   double thickness = 0.05;  // z-extent of the one-cell layer
   std::string msh_path;     // written in gmsh 2.2 ASCII (what gmshToFoam reads)
 };

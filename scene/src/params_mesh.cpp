@@ -12,6 +12,8 @@ MeshParams parse_mesh(Section& s) {
   p.recombine = s.boolean("recombine", p.recombine);
   p.h_body = s.opt_number("h_body", positive());
   p.h_uniform = s.opt_number("h_uniform", positive());
+  p.algorithm = s.string("algorithm", p.algorithm, {"delaunay", "frontal"});
+  p.smoothing = static_cast<int>(s.integer("smoothing", p.smoothing, 0, 100));
   if (p.h_min > p.h_max) s.fail("h_min", "must not exceed h_max");
   if (p.h_body && (*p.h_body < p.h_min || *p.h_body > p.h_max))
     s.fail("h_body", "must lie between h_min and h_max");
@@ -28,6 +30,8 @@ void emit_mesh(YAML::Emitter& e, const MeshParams& p) {
   emit_kv(e, "recombine", p.recombine);
   emit_opt(e, "h_body", p.h_body);
   emit_opt(e, "h_uniform", p.h_uniform);
+  emit_kv(e, "algorithm", p.algorithm);
+  emit_kv(e, "smoothing", p.smoothing);
   e << YAML::EndMap;
 }
 

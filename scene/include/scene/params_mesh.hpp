@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include <string>
 
 namespace scene {
 
@@ -13,6 +14,8 @@ struct MeshParams {
   bool recombine = true;             // quad-dominant (triangles otherwise)
   std::optional<double> h_body;      // cell size at the body; default sqrt(h_min * h_max)
   std::optional<double> h_uniform;   // cell size of the uniform grid; default h_min
+  std::string algorithm = "delaunay";  // gmsh 2D algorithm: delaunay (fast) | frontal (better cells)
+  int smoothing = 1;                 // gmsh Laplacian smoothing passes (~2 s CPU per 100k cells each)
 };
 
 }  // namespace scene

@@ -6,7 +6,9 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
+#include <algorithm>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -64,6 +66,12 @@ granular::ReplicaGroup mpi_group(const MpiSession& mpi) {
 }
 #endif
 
+// Several ranks on one machine already share its cores.
+int default_threads(int ranks) {
+  if (ranks > 1) return 1;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 void print_dry_run(const scene::Scene& s) {
   std::cout << scene::to_yaml(s);
   if (s.body) {
@@ -79,19 +87,22 @@ int main(int argc, char** argv) {
 #ifdef GRANULAR_HAVE_MPI
   const MpiSession mpi(argc, argv);
   const int rank = mpi.rank();
+  const int ranks = mpi.size();
 #else
   const int rank = 0;
+  const int ranks = 1;
 #endif
   CLI::App app{"granular: event-driven granular gas (hard disks) past a scene body, or in a box"};
   app.set_version_flag("--version", scene::version_string());
   app.require_subcommand(1);
   std::string scene_path, out_dir;
-  int np = 1;
+  int np = 0;  // 0: one thread per core (one per rank under mpirun)
   bool dry_run = false;
   CLI::App* run = app.add_subcommand("run", "run one scene and write DIR/fields.vti (body scenes) and DIR/summary.json");
   run->add_option("scene", scene_path, "scene YAML file")->required();
   run->add_option("--out", out_dir, "output directory");
-  run->add_option("--np", np, "replicas run at once in threads (per MPI rank under mpirun)")
+  run->add_option("--np", np,
+                  "replicas run at once in threads, per MPI rank (default: one per core; 1 under mpirun)")
       ->check(CLI::Range(1, 1024));
   run->add_flag("--dry-run", dry_run, "only validate the scene and print it resolved");
   try {
@@ -111,7 +122,7 @@ int main(int argc, char** argv) {
     scene::install_interrupt_handler();
     granular::RunOptions opt;
     opt.out_dir = out_dir;
-    opt.np = np;
+    opt.np = np > 0 ? np : default_threads(ranks);
     if (s.box) {
       // Box validation runs are single-process; extra ranks have nothing to do.
       if (rank != 0) return 0;

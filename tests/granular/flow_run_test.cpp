@@ -121,3 +121,24 @@ TEST(FlowRun, WarmupDetectsSteadyState) {
   EXPECT_GE(r.summary["warmup_flow_throughs"].get<double>(), 1.0 - 1e-9);
   EXPECT_LT(r.summary["warmup_flow_throughs"].get<double>(), 8.0);
 }
+
+TEST(FlowRun, EveryShippedCaseRunsShortened) {
+  // Every body scene shipped in pipeline/cases runs (small and short here):
+  // no overlaps, and a shock compresses the stream somewhere.
+  for (const char* name : {"wedge_M3_10", "wedge_M4_15", "wedge_M5_20", "disc_M4", "apollo_M5"}) {
+    scene::Scene s = scene::load_scene(std::string(SOURCE_DIR) + "/pipeline/cases/" + name + ".yaml");
+    s.granular.particles = 1500;
+    s.granular.lattice_nx = 40;
+    s.granular.lattice_ny = 40;
+    s.granular.warmup = 1.0;
+    s.granular.averaging = 0.5;
+    s.granular.replicas = 1;
+    granular::RunOptions o;
+    o.np = 1;
+    const granular::FlowResult r = granular::run_flow_scene(s, o);
+    EXPECT_LT(r.summary["max_overlap"].get<double>(), kOverlapTol) << name;
+    EXPECT_EQ(r.summary["recoveries"].get<double>(), 0.0) << name;
+    const double nu_inf = r.summary["packing_fraction"].get<double>();
+    EXPECT_GT(flowtest::max_of(r.fields, "volume_fraction"), kMinCompression * nu_inf) << name;
+  }
+}

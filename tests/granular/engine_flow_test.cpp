@@ -11,9 +11,10 @@ namespace granular {
 namespace {
 
 // Statistical tolerances: ~7 independent samples of ~700 particles.
-constexpr double kDensityTolerance = 0.04;
-constexpr double kVelocityTolerance = 0.02;
-constexpr double kTemperatureTolerance = 0.05;
+constexpr double kDensityTolerance = 0.03;
+constexpr double kVelocityTolerance = 0.01;            // relative, U = 3
+constexpr double kTransverseVelocityTolerance = 0.04;  // absolute: ~3 sigma of the mean
+constexpr double kTemperatureTolerance = 0.04;
 constexpr double kRoundOffOverlap = 1e-10;
 
 struct Moments {
@@ -30,11 +31,13 @@ Moments sample(const FlowSimulation& f, double x0, double x1, double y0, double 
   return m;
 }
 
+// Default sides (mirror) and the inflow momentum correction: the free
+// stream crosses an empty domain unchanged.
 TEST(EngineFlow, EmptyDomainKeepsTheFreeStream) {
   FlowConfig c;
   c.xmin = 0; c.xmax = 150; c.ymin = 0; c.ymax = 100;
   c.inflow_speed = 3.0;
-  c.packing_fraction = 0.05;
+  c.packing_fraction = 0.1;
   c.seed = 9;
   c.prefill = false;  // the inflow alone must fill the domain
   FlowSimulation f(c);
@@ -52,7 +55,7 @@ TEST(EngineFlow, EmptyDomainKeepsTheFreeStream) {
   EXPECT_NEAR(m.count / area / n, 1.0, kDensityTolerance);
   const double ux = m.vx / m.count, uy = m.vy / m.count;
   EXPECT_NEAR(ux / c.inflow_speed, 1.0, kVelocityTolerance);
-  EXPECT_NEAR(uy, 0.0, kVelocityTolerance);
+  EXPECT_NEAR(uy, 0.0, kTransverseVelocityTolerance);
   const double temp = 0.5 * (m.vxx / m.count - ux * ux + m.vyy / m.count - uy * uy);
   EXPECT_NEAR(temp, c.temperature, kTemperatureTolerance);
   const Stats st = f.stats();

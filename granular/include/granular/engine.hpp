@@ -189,6 +189,14 @@ struct FlowConfig {
   Vec2 gravity{0, 0};
   std::uint64_t seed = 1;
   bool prefill = true;  // start with free stream filling the domain outside the body
+  // Free-stream sides (y = ymax, and y = ymin unless symmetric):
+  //  mirror:    elastic specular walls. For an undisturbed free stream this is
+  //             exactly the Maxwellian in/outflux AND supplies the collisional
+  //             pressure of the gas beyond (default; docs/granular_engine.md).
+  //  open_flux: disks leave; Maxwellian influx inserted on the line. The
+  //             missing collisional pressure lets the side gas expand
+  //             (density -5% near the sides at nu = 0.1).
+  enum class Sides { mirror, open_flux } sides = Sides::mirror;
 };
 
 class FlowSimulation {

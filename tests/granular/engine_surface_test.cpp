@@ -36,6 +36,21 @@ TEST(EngineSurface, BounceUnderGravityMatchesClosedForm) {
   }
 }
 
+TEST(EngineSurface, RestitutionZeroUnderGravityNeverStalls) {
+  // e = 0 leaves the disk resting on the floor with zero normal velocity;
+  // time must keep advancing and the disk must stay on the floor.
+  EngineConfig c = test::walled_box(20.0, 0.0);
+  c.gravity = {0.2, -1.0};
+  c.tc = 1e-3;
+  Engine e(c);
+  e.add({5, 3}, {0, 0});
+  e.run_until(4.0);
+  EXPECT_EQ(e.time(), 4.0);
+  const auto s = test::snapshot(e);
+  EXPECT_NEAR(s[0].r.y, 0.5, 1e-4);  // TC bounces at most ~ g tc^2
+  EXPECT_LE(e.stats().max_overlap, kRoundOffOverlap);
+}
+
 TEST(EngineSurface, DiskAimedAtVertexReflectsAboutVertexNormal) {
   EngineConfig c = test::open_space();
   c.vertices = {{{10, 10}, -1.0}};

@@ -94,7 +94,9 @@ double vertex_contact_accelerated(double px, double py, double vx, double vy, do
   c[4] = hx * hx + hy * hy;
   if (c[0] <= 0.0) {
     // Touching (or overlapped by round-off). Approaching: collide now.
-    if (c[1] < 0.0 || (c[1] == 0.0 && c[2] < 0.0)) return 0.0;
+    if (c[1] < 0.0) return 0.0;
+    // At rest on the vertex and pushed in: sink by kRestingSink (f ~ c2 t^2).
+    if (c[1] == 0.0 && c[2] < 0.0) return std::sqrt(kRestingSink / -c[2]);
     // Separating: f(t) - f(0) = t * (c1 + c2 t + c3 t^2 + c4 t^3). The disk
     // comes back to the same gap where the cubic factor turns negative;
     // dividing out the root at t = 0 avoids a spurious round-off root there.

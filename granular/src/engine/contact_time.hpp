@@ -13,6 +13,12 @@
 namespace granular::detail {
 
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
+// A disk touching a surface with zero normal velocity while the force
+// pushes it in (after a restitution-0 impact, or placed at rest) would
+// "collide" now with a zero impulse, forever at the same instant. Instead
+// it is let sink by this depth (in diameters, below the overlap tolerances) so
+// that the next contact has a real approach speed: time always advances.
+inline constexpr double kRestingSink = 1e-11;
 
 // Smallest dt >= 0 at which f(dt) = c + b dt + a dt^2 reaches 0 while
 // decreasing. c is the current gap (<= 0: touching or overlapped by
@@ -24,7 +30,7 @@ inline double first_contact(double c, double b, double a) {
     // an acceleration towards the surface; it returns to the same gap
     // after -b/a (exact for the parabola), which avoids a spurious root at
     // dt ~ |c|/b from the round-off overlap.
-    if (a < 0.0) return b > 0.0 ? -b / a : 0.0;
+    if (a < 0.0) return b > 0.0 ? -b / a : std::sqrt(kRestingSink / -a);
     return kNever;
   }
   if (a == 0.0) return b < 0.0 ? -c / b : kNever;

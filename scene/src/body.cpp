@@ -176,11 +176,32 @@ BodyGeometry make_body(const BodySpec& spec) {
   g.polyline.pop_back();  // closing point repeats the first
   if (spec.kind != BodyKind::polygon) g.polyline = validated_polygon(g.polyline);
   g.symmetric = is_mirror_symmetric(g.polyline, g.length);
-  // Nose: the most upstream vertex, preferring the symmetry line.
-  Vec2 nose = g.polyline.front();
-  for (const Vec2 p : g.polyline)
-    if (p.x < nose.x || (p.x == nose.x && std::abs(p.y) < std::abs(nose.y))) nose = p;
-  g.nose = nose;
+  if (g.symmetric) {
+    // Nose: the most upstream point ON the symmetry line (a notch facing the
+    // stream has its most upstream vertices off the axis). Where an edge
+    // crosses the axis without a vertex there, insert one so that walks
+    // from the nose split the outline into its mirror halves.
+    std::size_t best = g.polyline.size();
+    double best_x = std::numeric_limits<double>::infinity();
+    Vec2 best_p{};
+    const std::size_t n = g.polyline.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 a = g.polyline[i], b = g.polyline[(i + 1) % n];
+      if (a.y == 0.0 && a.x < best_x) { best = n; best_x = a.x; best_p = a; }
+      if ((a.y < 0.0 && b.y > 0.0) || (a.y > 0.0 && b.y < 0.0)) {
+        const Vec2 c = a + (a.y / (a.y - b.y)) * (b - a);
+        if (c.x < best_x) { best = i; best_x = c.x; best_p = {c.x, 0.0}; }
+      }
+    }
+    if (best < n) g.polyline.insert(g.polyline.begin() + static_cast<std::ptrdiff_t>(best + 1), best_p);
+    g.nose = best_p;
+  } else {
+    // Nose: the most upstream vertex.
+    Vec2 nose = g.polyline.front();
+    for (const Vec2 p : g.polyline)
+      if (p.x < nose.x || (p.x == nose.x && std::abs(p.y) < std::abs(nose.y))) nose = p;
+    g.nose = nose;
+  }
   return g;
 }
 

@@ -214,11 +214,17 @@ Domain blunt_domain(double mach, double xfront, double xback, double h, bool sym
   const double m = std::max(mach, 1.2);
   const double standoff = billig_standoff_cylinder(m) * h;
   Domain d;
-  // Upstream: room for the standoff plus a margin of free stream, so the
-  // inflow boundary never touches the shock (granular shocks sit further out).
-  d.xmin = xfront - std::max(2.5 * standoff, 0.6 * h);
+  // Upstream: room for the standoff plus free stream, so the inflow boundary
+  // never touches the shock. Granular bow shocks (e near 1) stand off about
+  // twice as far as air's (a disc at Mach 4: 1.2 radii against Billig's 0.52),
+  // hence kGranularStandoffFactor times Billig, and the side sized for a
+  // shock whose vertex stands that far out.
+  constexpr double kGranularStandoffFactor = 2.5;
+  constexpr double kUpstreamMargin = 1.6;  // domain edge beyond the granular shock vertex
+  const double vertex = kGranularStandoffFactor * standoff;
+  d.xmin = xfront - std::max(kUpstreamMargin * vertex, 0.8 * h);
   d.xmax = xback;
-  const double shock_h = billig_shock_y(m, h, d.xmax - (xfront - standoff));
+  const double shock_h = billig_shock_y(m, h, d.xmax - (xfront - vertex));
   d.ymax = std::max(1.1 * shock_h, 2.0 * h);
   d.ymin = symmetric ? 0.0 : -d.ymax;
   d.symmetric = symmetric;

@@ -183,3 +183,24 @@ TEST(Geometry, DomainsContainTheBodyAndTheExpectedShock) {
   const auto d = scene::scene_domain(s);
   EXPECT_GT(d.ymax, d.xmax * std::tan(29.8 * kDeg));
 }
+
+TEST(Geometry, SymmetricNoseLiesOnTheAxis) {
+  // A notch facing the stream: the most upstream vertices are off the axis.
+  BodySpec notch;
+  notch.kind = BodyKind::polygon;
+  notch.points = {{0, -1}, {1, -1}, {1, 1}, {0, 1}, {0.3, 0}};
+  const auto g = scene::make_body(notch);
+  EXPECT_TRUE(g.symmetric);
+  EXPECT_EQ(g.nose, (Vec2{0.3, 0}));
+  const auto c = scene::clipped_outline(g, {-1, 2, 0, 2, true});
+  // From the notch bottom up its face, round the front corner, along the top.
+  ASSERT_GE(c.size(), 3u);
+  EXPECT_EQ(c[1], (Vec2{0, 1}));
+  // A flat front has no vertex on the axis: one is inserted.
+  BodySpec block;
+  block.kind = BodyKind::polygon;
+  block.points = {{0, -1}, {1, -1}, {1, 1}, {0, 1}};
+  const auto b = scene::make_body(block);
+  EXPECT_EQ(b.nose, (Vec2{0, 0}));
+  EXPECT_EQ(b.polyline.size(), 5u);
+}

@@ -25,7 +25,7 @@ constexpr int kBisections = 60;
 constexpr double kSnapToVertex = 1e-8;
 // A fluid corner narrower than this between the body and a boundary makes a
 // cusp no valid cell fits in (the disc's rear point on x = xmax).
-constexpr double kMinCornerDeg = 20.0;
+constexpr double kMinCornerDeg = 5.0;
 // Arcs are handed to gmsh in pieces of at most a quarter turn.
 constexpr double kMaxArcSweep = 0.5 * kPi;
 

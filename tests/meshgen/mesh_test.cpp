@@ -162,3 +162,23 @@ TEST(Mesh, BadRequestsAreClearErrors) {
         << e.what();
   }
 }
+
+TEST(Mesh, AsymmetricBodiesWhollyInsideOrThroughTheOutlet) {
+  // Off-axis triangle: wholly inside a given domain (the body is a hole), and
+  // with the default domain (its rear vertex on the outflow plane).
+  const std::string body = "name: tri\nbody: {kind: polygon, points: [[0, 0.1], [1, 0.3], [0.8, -0.4]]}\n"
+                           "freestream: {mach: 3.0}\nmesh: {h_min: 0.06, h_max: 0.2}\n";
+  const scene::Scene hole = scene::parse_scene(body + "domain: {xmin: -1, xmax: 2, ymin: -1.5, ymax: 1.5}\n");
+  const scene::Scene cut = scene::parse_scene(body);
+  for (const scene::Scene* s : {&hole, &cut}) {
+    meshgen::MeshRequest u;
+    u.uniform = true;
+    const std::string dir = meshgen_test::fresh_dir(s == &hole ? "asym_hole" : "asym_cut");
+    const meshgen::MeshResult res = meshgen::generate_mesh(*s, u, dir);
+    EXPECT_TRUE(res.check_mesh_ok) << dir;
+    const auto types = patch_types(dir);
+    EXPECT_EQ(types.at("bottom"), "patch");  // far field, not a symmetry plane
+    EXPECT_EQ(types.at("body"), "wall");
+    EXPECT_EQ(types.size(), 6u);
+  }
+}

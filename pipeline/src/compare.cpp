@@ -10,13 +10,31 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Errors below this are treated as this (log-log interpolation needs > 0).
 constexpr double kErrorFloor = 1e-6;
+// CFD wall time of the uniform family (sorted by time) at error `e`:
+// log(time) interpolated linearly in log(error) between the bracketing runs;
+// a coarser uniform run already as accurate gives its own time; NaN when no
+// uniform run reaches `e`.
+double uniform_time_at(const std::vector<const GridRun*>& u, double e) {
+  for (std::size_t k = 0; k + 1 < u.size(); ++k) {
+    const double e0 = std::max(u[k]->error, kErrorFloor), e1 = std::max(u[k + 1]->error, kErrorFloor);
+    if ((e0 - e) * (e1 - e) <= 0 && e0 != e1) {
+      const double f = (std::log(e) - std::log(e0)) / (std::log(e1) - std::log(e0));
+      return std::exp(std::log(u[k]->cfd_wall_seconds) +
+                      f * (std::log(u[k + 1]->cfd_wall_seconds) - std::log(u[k]->cfd_wall_seconds)));
+    }
+  }
+  if (!u.empty() && std::max(u.front()->error, kErrorFloor) <= e) return u.front()->cfd_wall_seconds;
+  return kNaN;
+}
+
 }  // namespace
 
 nlohmann::json GridRun::to_json() const {
   return {{"family", family}, {"level", level}, {"cells", cells}, {"mesh_seconds", mesh_seconds},
           {"cfd_wall_seconds", cfd_wall_seconds}, {"steps", steps}, {"steady_state_reached", steady},
           {"shock", shock}, {"value", value}, {"value_ci", value_ci}, {"error", error},
-          {"wall_pressure_ratio", wall_pressure_ratio}, {"pressure_error", pressure_error}};
+          {"wall_pressure_ratio", wall_pressure_ratio}, {"pressure_error", pressure_error},
+          {"speedup_cfd_at_equal_error", speedup_cfd}};
 }
 
 void score(GridRun& r, const Reference& ref) {
@@ -52,19 +70,10 @@ Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
   if (c.uniform_pick < 0)
     for (int k = static_cast<int>(c.uniform.size()) - 1; k >= 0; --k)
       if (std::isfinite(c.uniform[k].error)) { c.uniform_pick = k; break; }
-  // Interpolate log(time) against log(error) along the uniform family, sorted by time.
   std::sort(u.begin(), u.end(), [](const GridRun* a, const GridRun* b) { return a->cfd_wall_seconds < b->cfd_wall_seconds; });
-  double t_at = kNaN;
-  for (std::size_t k = 0; k + 1 < u.size(); ++k) {
-    const double e0 = std::max(u[k]->error, kErrorFloor), e1 = std::max(u[k + 1]->error, kErrorFloor);
-    if ((e0 - e) * (e1 - e) <= 0 && e0 != e1) {
-      const double f = (std::log(e) - std::log(e0)) / (std::log(e1) - std::log(e0));
-      t_at = std::exp(std::log(u[k]->cfd_wall_seconds) + f * (std::log(u[k + 1]->cfd_wall_seconds) - std::log(u[k]->cfd_wall_seconds)));
-      break;
-    }
-  }
-  // A coarse uniform grid already as accurate: its time is the (upper) match.
-  if (!std::isfinite(t_at) && std::max(u.front()->error, kErrorFloor) <= e) t_at = u.front()->cfd_wall_seconds;
+  const double t_at = uniform_time_at(u, e);
+  for (auto& r : c.clustered)
+    r.speedup_cfd = std::isfinite(r.error) ? uniform_time_at(u, std::max(r.error, kErrorFloor)) / r.cfd_wall_seconds : kNaN;
   const double clustered_total = cl.cfd_wall_seconds + cl.mesh_seconds + granular_seconds;
   if (std::isfinite(t_at)) {
     c.speedup_cfd = t_at / cl.cfd_wall_seconds;

@@ -212,12 +212,14 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
   if (angle && std::abs(g.value("error_deg", 0.0)) > 1.0)
     md << " **The granular shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
   md << "\n\n## Runs\n\n| family | h / h_min | cells | CFD wall s | steps | steady | " << (angle ? "angle (deg)" : "standoff")
-     << " | error | " << (angle ? "p2/p1 (exact " + fmt(ref.pressure_ratio, 4) + ")" : "") << " |\n|---|---|---|---|---|---|---|---|---|\n";
+     << " | error | " << (angle ? "p2/p1 (exact " + fmt(ref.pressure_ratio, 4) + ")" : "")
+     << " | speedup at equal error |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto* fam : {&c.uniform, &c.clustered})
     for (const auto& r : *fam)
       md << "| " << r.family << " | " << r.level << " | " << r.cells << " | " << fmt(r.cfd_wall_seconds) << " | " << r.steps
          << " | " << (r.steady ? "yes" : "no") << " | " << fmt(r.value, 4) << " | " << fmt(r.error) << " | "
-         << (angle ? fmt(r.wall_pressure_ratio, 4) : "") << " |\n";
+         << (angle ? fmt(r.wall_pressure_ratio, 4) : "") << " | "
+         << (r.family == "clustered" ? fmt(r.speedup_cfd, 3) : "") << " |\n";
   md << "\n## Figures\n\n";
   auto img = [&](const std::string& file, const std::string& caption) {
     if (fs::exists(fig + "/" + file)) md << "![" << caption << "](figures/" << file << ")\n\n*" << caption << "*\n\n";

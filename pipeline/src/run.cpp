@@ -75,6 +75,20 @@ Reference reference_for(const scene::Scene& s) {
   return r;
 }
 
+// rhoCentralFoam with a limited reconstruction spreads a shock over about
+// this many cells; the shock window (half-width) spans this many shock widths.
+constexpr double kCfdShockCells = 3.0;
+constexpr double kWindowPerShockWidth = 1.25;
+
+scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
+  scene::Scene c = s;
+  const scene::Domain d = scene::scene_domain(s);
+  const double dx = std::max(d.width() / s.granular.lattice_nx, d.height() / s.granular.lattice_ny);
+  c.shockfit.window = std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
+  c.shockfit.min_samples = 0;  // CFD lattices carry no sample counts
+  return c;
+}
+
 double shock_value(const shockfit::ShockResult& r) {
   if (r.shock == "attached") return r.shock_angle_deg;
   if (r.shock == "detached") return r.standoff;
@@ -207,8 +221,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
       run.cells = msum.value("cells", 0L);
       run.mesh_seconds = msum.value("seconds", 0.0);
       if (s.pipeline.cfd) {
-        const std::string fp_c = fingerprint({fp_m, scene::section_yaml(s, "cfd"), scene::section_yaml(s, "freestream"),
-                                              scene::section_yaml(s, "shockfit")});
+        const std::string fp_c = fingerprint({fp_m, scene::section_yaml(s, "cfd"), scene::section_yaml(s, "freestream")});
         if (forced(o, "cfd")) cache.invalidate(cstage);
         nlohmann::json csum;
         if (cache.fresh(cstage, fp_c)) {
@@ -221,22 +234,35 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
           check_interrupt("cfd " + name);
           const auto lat = cfd::resample_to_lattice(s, cache.dir(cstage), s.granular.lattice_nx, s.granular.lattice_ny);
           scene::write_vti(lat, cache.dir(cstage) + "/fields.vti");
-          const auto sh = shockfit::locate_shock(s, lat);
-          shockfit::write_outputs(s, lat, sh, cache.dir(cstage) + "/shockfit");
           csum = c.summary();
-          csum["shockfit"] = sh.summary();
-          csum["shock_value"] = shock_value(sh);
-          csum["shock_value_ci"] = shock_ci(sh);
           cache.mark_done(cstage, fp_c, csum);
+        }
+        // The CFD shock is located like the granular one, with the shock
+        // window widened to the grid's smeared shock (same rule for both families).
+        const scene::Scene fs_scene = cfd_shockfit_scene(s, level * s.mesh.h_min);
+        const std::string fstage = cstage + "/shockfit";
+        const std::string fp_f = fingerprint({fp_c, scene::section_yaml(fs_scene, "shockfit")});
+        nlohmann::json fsum;
+        if (!forced(o, "cfd") && cache.fresh(fstage, fp_f)) {
+          fsum = cache.result(fstage);
+        } else {
+          cache.invalidate(fstage);
+          const auto lat = scene::read_vti(cache.dir(cstage) + "/fields.vti");
+          const auto sh = shockfit::locate_shock(fs_scene, lat);
+          shockfit::write_outputs(fs_scene, lat, sh, cache.dir(fstage));
+          fsum = sh.summary();
+          fsum["shock_value"] = shock_value(sh);
+          fsum["shock_value_ci"] = shock_ci(sh);
+          cache.mark_done(fstage, fp_f, fsum);
         }
         run.cfd_wall_seconds = csum.value("wall_seconds", kNaN);
         run.steps = csum.value("steps", 0L);
         run.steady = csum.value("steady_state_reached", false);
-        run.shock = csum["shockfit"].value("shock", "none");
-        run.value = csum["shock_value"].is_number() ? csum["shock_value"].get<double>() : kNaN;
-        run.value_ci = csum["shock_value_ci"].is_number() ? csum["shock_value_ci"].get<double>() : kNaN;
-        run.wall_pressure_ratio = csum.value("wall_pressure_ratio", kNaN);
-        if (csum["wall_pressure_ratio"].is_null()) run.wall_pressure_ratio = kNaN;
+        run.shock = fsum.value("shock", "none");
+        run.value = fsum["shock_value"].is_number() ? fsum["shock_value"].get<double>() : kNaN;
+        run.value_ci = fsum["shock_value_ci"].is_number() ? fsum["shock_value_ci"].get<double>() : kNaN;
+        run.wall_pressure_ratio =
+            csum["wall_pressure_ratio"].is_number() ? csum["wall_pressure_ratio"].get<double>() : kNaN;
         step("cfd " + name);
       }
       (clustered ? fam_c : fam_u).push_back(run);

@@ -22,6 +22,7 @@ struct GridRun {
   double error = 0;          // |value - reference| (deg) or relative standoff error
   double wall_pressure_ratio = 0;
   double pressure_error = 0; // relative, wedges only (NaN otherwise)
+  double speedup_cfd = 0;    // clustered: uniform time at this run's error / this run's time
   nlohmann::json to_json() const;
 };
 

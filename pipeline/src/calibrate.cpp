@@ -26,18 +26,25 @@ struct Point {
   double e, angle, ci;
 };
 
+// A sweep point counts only when the fit found a physical attached angle with
+// a usable interval (a failed fit can return any number).
+constexpr double kMaxUsableCiDeg = 5.0;
+bool usable(const Point& p) {
+  return std::isfinite(p.angle) && p.angle > 0.0 && p.angle < 90.0 && std::isfinite(p.ci) && p.ci < kMaxUsableCiDeg;
+}
+
 // Linear interpolation of e where angle(e) crosses `target`, scanning from
 // e = 1 downwards (the physically relevant, least dissipative crossing).
 // The 95% half-width on e propagates the angle intervals through the local slope.
 bool crossing(const std::vector<Point>& pts, double target, double& e, double& e_ci) {
+  if (pts.size() < 2) return false;
   for (std::size_t k = pts.size() - 1; k >= 1; --k) {
     const Point a = pts[k - 1], b = pts[k];
-    if (!std::isfinite(a.angle) || !std::isfinite(b.angle)) continue;
+    if (!usable(a) || !usable(b)) continue;
     if ((a.angle - target) * (b.angle - target) <= 0 && a.angle != b.angle) {
       const double slope = (b.angle - a.angle) / (b.e - a.e);
       e = a.e + (target - a.angle) / slope;
-      const double ci = std::isfinite(a.ci) && std::isfinite(b.ci) ? 0.5 * (a.ci + b.ci) : kNaN;
-      e_ci = std::abs(ci / slope);
+      e_ci = std::abs(0.5 * (a.ci + b.ci) / slope);
       return true;
     }
   }
@@ -70,8 +77,6 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     std::vector<Point> pts;
     Series ser;
     ser.title = base.name;
-    ser.style = "yerrorlines";
-    std::vector<double> ys_ci;
     for (const double e : o.restitutions) {
       scene::Scene s = base;
       s.granular.restitution = e;
@@ -111,8 +116,10 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     }
     out.push_back(row);
     for (const auto& p : pts) {
+      if (!usable(p)) continue;  // failed fits stay in calibration.json, not on the plot
       ser.x.push_back(p.e);
       ser.y.push_back(p.angle);
+      ser.yerr.push_back(p.ci);
     }
     plot.series.push_back(ser);
     std::ostringstream hl;
@@ -121,9 +128,6 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     plot.extra.push_back(hl.str());
   }
   progress.finish();
-  // The error bars: gnuplot's yerrorlines wants a third column; keep it simple
-  // with plain lines when intervals are missing.
-  for (auto& s : plot.series) s.style = "linespoints";
   plot_png(plot, o.out_dir + "/calibration.png");
   write_calibration(table, table_path);
   scene::write_json_atomic(o.out_dir + "/calibration.json", out);

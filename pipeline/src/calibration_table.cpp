@@ -48,6 +48,7 @@ CalibrationTable read_calibration(const std::string& path) {
 
 void write_calibration(const CalibrationTable& t, const std::string& path) {
   YAML::Emitter e;
+  e.SetDoublePrecision(6);  // e to 1e-6 is far below its uncertainty
   e << YAML::BeginMap << YAML::Key << "gamma" << YAML::Value << t.gamma;
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;
   for (const auto& c : t.entries) {

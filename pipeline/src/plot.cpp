@@ -36,7 +36,7 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
   gp << "set terminal pngcairo size " << spec.width << "," << spec.height << " font 'DejaVu Sans,11'\n"
      << "set output '" << png.filename().string() << ".tmp'\n"
      << "set title \"" << spec.title << "\"\nset xlabel \"" << spec.xlabel << "\"\nset ylabel \""
-     << spec.ylabel << "\"\nset grid\nset key outside right\n";
+     << spec.ylabel << "\"\nset grid\nset key outside right\nset termoption noenhanced\n";
   if (spec.logx) gp << "set logscale x\n";
   if (spec.logy) gp << "set logscale y\n";
   for (const auto& e : spec.extra) gp << e << "\n";
@@ -46,10 +46,13 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
   for (std::size_t k = 0; k < spec.series.size(); ++k) {
     const auto& s = spec.series[k];
     if (s.x.empty()) continue;
-    gp << (first ? "" : ", ") << "$d" << k << " with " << s.style << " title \"" << s.title << "\"";
+    const bool bars = s.yerr.size() == s.y.size();
+    gp << (first ? "" : ", ") << "$d" << k << (bars ? " using 1:2:3 with yerrorlines" : " with " + s.style)
+       << " title \"" << s.title << "\"";
     first = false;
     data << "$d" << k << " << EOD\n";
-    for (std::size_t i = 0; i < s.x.size(); ++i) data << s.x[i] << " " << s.y[i] << "\n";
+    for (std::size_t i = 0; i < s.x.size(); ++i)
+      data << s.x[i] << " " << s.y[i] << (bars ? " " + std::to_string(s.yerr[i]) : "") << "\n";
     data << "EOD\n";
   }
   if (first) return false;  // nothing to plot

@@ -9,7 +9,8 @@ namespace pipeline {
 struct Series {
   std::string title;
   std::vector<double> x, y;
-  std::string style = "linespoints";  // gnuplot "with" clause
+  std::vector<double> yerr;           // optional error bars (same length as y)
+  std::string style = "linespoints";  // gnuplot "with" clause (yerrorlines when yerr is given)
 };
 
 struct PlotSpec {

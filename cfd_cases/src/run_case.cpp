@@ -35,6 +35,20 @@ constexpr double kTimeSlack = 1e-9;
 // Slack on min_time, in flow-through times (written times are rounded).
 constexpr double kMinTimeSlack = 1e-6;
 
+// Stopping the solver through controlDict (stopAt noWriteNow) can leave a
+// time directory that holds only `uniform/`: the stop lands after the time
+// was opened for writing but before any field was written. Such a directory
+// is no solution; remove it so neither the monitor nor the resampling (which
+// takes the latest time) reads it.
+void remove_incomplete_times(const std::string& case_dir) {
+  std::vector<std::string> dirs{case_dir};
+  for (const auto& e : fs::directory_iterator(case_dir))
+    if (e.is_directory() && e.path().filename().string().rfind("processor", 0) == 0) dirs.push_back(e.path().string());
+  for (const auto& d : dirs)
+    for (const TimeDir& t : time_dirs(d))
+      if (!fs::exists(d + "/" + t.name + "/rho")) fs::remove_all(d + "/" + t.name);
+}
+
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -136,6 +150,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   };
   for (;;) {
     const bool exited = solver.poll();
+    if (exited) remove_incomplete_times(cdir);
     log.update();
     if (log.diverged()) {
       solver.terminate();

@@ -54,7 +54,7 @@ Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
   Comparison c;
   c.clustered = std::move(clustered);
   c.uniform = std::move(uniform);
-  c.speedup_cfd = c.speedup_total = c.speedup_bound = kNaN;
+  c.speedup_cfd = c.speedup_total = c.speedup_bound = c.speedup_total_bound = kNaN;
   // Headline clustered run: the finest one with a finite error.
   for (int k = static_cast<int>(c.clustered.size()) - 1; k >= 0; --k)
     if (std::isfinite(c.clustered[k].error)) { c.clustered_pick = k; break; }
@@ -80,6 +80,7 @@ Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
     c.speedup_total = t_at / clustered_total;  // uniform meshing time is negligible and left out
   } else {
     c.speedup_bound = u.back()->cfd_wall_seconds / cl.cfd_wall_seconds;
+    c.speedup_total_bound = u.back()->cfd_wall_seconds / clustered_total;
   }
   return c;
 }

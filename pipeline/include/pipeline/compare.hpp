@@ -43,7 +43,7 @@ struct Comparison {
   // clustered pick's error, over the clustered pick's time. NaN when the
   // uniform family never reaches that error (then `speedup_bound` holds the
   // lower bound finest-uniform time / clustered time).
-  double speedup_cfd = 0, speedup_total = 0, speedup_bound = 0;
+  double speedup_cfd = 0, speedup_total = 0, speedup_bound = 0, speedup_total_bound = 0;
 };
 
 // Error measure of one run against the reference.

@@ -40,7 +40,7 @@ bool field_png(const scene::Lattice& lat, const std::string& field, const std::s
      << "set title \"" << title << "\"\nset size ratio -1\nset xlabel 'x / L'\nset ylabel 'y / L'\n"
      << "set xrange [" << lat.x0 << ":" << lat.x0 + lat.nx * lat.dx << "]\nset yrange [" << lat.y0 << ":"
      << lat.y0 + lat.ny * lat.dy << "]\nset palette rgb 33,13,10\nset key outside bottom center horizontal\n"
-     << "set datafile missing 'NaN'\nset termoption noenhanced\n";
+     << "set termoption noenhanced\n";
   std::ostringstream inl;
   gp << "plot '" << fs::path(data).filename().string() << "' using 1:2:3 with image title '" << field << "'";
   for (std::size_t k = 0; k < overlays.size(); ++k) {

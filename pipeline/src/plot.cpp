@@ -36,7 +36,7 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
   gp << "set terminal pngcairo size " << spec.width << "," << spec.height << " font 'DejaVu Sans,11'\n"
      << "set output '" << png.filename().string() << ".tmp'\n"
      << "set title \"" << spec.title << "\"\nset xlabel \"" << spec.xlabel << "\"\nset ylabel \""
-     << spec.ylabel << "\"\nset grid\nset key outside right\nset termoption noenhanced\n";
+     << spec.ylabel << "\"\nset grid\nset key top right\nset termoption noenhanced\n";
   if (spec.logx) gp << "set logscale x\n";
   if (spec.logy) gp << "set logscale y\n";
   for (const auto& e : spec.extra) gp << e << "\n";

@@ -1,0 +1,88 @@
+// Numerical stability on the hard cases of issue 7 (slow, real OpenFOAM):
+// a Mach 8 wedge, the Apollo capsule at Mach 5, and a strongly skewed band.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "cfd/run_case.hpp"
+#include "meshgen/mesh.hpp"
+#include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+// Mach 8 on ~5k cells smears the strong shock: the wall pressure ratio came
+// out 6.5 % high (docs/bench_cfd.md); a broken run is off by far more.
+constexpr double kMach8WallTol = 0.10;
+// A grid graded 20:1 across the flow still gives the M3/10 wall pressure to 1 %.
+constexpr double kSkewedWallTol = 0.01;
+constexpr double kSkewGrading = 20.0;
+
+void expect_finite_positive(const scene::Lattice& lat) {
+  for (const char* f : {"rho", "p", "T"}) {
+    long finite = 0;
+    for (const double v : lat.field(f)) {
+      if (std::isnan(v)) continue;  // inside the body / outside the mesh
+      EXPECT_GT(v, 0.0) << f;
+      ++finite;
+    }
+    EXPECT_GT(finite, 0) << f;
+  }
+}
+
+TEST(HardCases, Mach8WedgeStaysStable) {
+  // The strong shock's density noise floor is ~0.15 per flow-through: a
+  // looser steady tolerance, and a short run.
+  const scene::Scene s = cfd_test::wedge_scene(8.0, 15.0, "{end_time: 4, steady_tol: 0.2}");
+  const std::string d = cfd_test::scratch_dir();
+  cfd::make_wedge_block_mesh(s, 5000, d + "/mesh");
+  const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
+  const double exact = scene::oblique_pressure_ratio(8.0, *scene::oblique_shock_beta(8.0, 15 * kDeg, 1.4), 1.4);
+  EXPECT_NEAR(r.wall_pressure_ratio, exact, kMach8WallTol * exact);
+  expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 60));
+}
+
+TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
+  // Impulsively started at Mach 5 on a coarse grid (h = 0.05 D), the
+  // Kurganov flux drives the afterbody expansion to a negative temperature
+  // within a fraction of a flow-through; the more dissipative Tadmor flux
+  // (the Apollo case study's setting) runs through. Either way the run must
+  // end in a result or a clear RunError, never a hang or a silent NaN.
+  const std::string base = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
+  const std::string d = cfd_test::scratch_dir();
+  {
+    const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3}\n");
+    meshgen::MeshRequest req;
+    req.uniform = true;
+    req.h_min = 0.05;
+    meshgen::generate_mesh(s, req, d + "/mesh");
+    try {
+      const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/kurganov", {});
+      expect_finite_positive(cfd::resample_to_lattice(s, d + "/kurganov", 80, 80));
+    } catch (const scene::RunError& e) {
+      EXPECT_NE(std::string(e.what()).find("diverged"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("log.rhoCentralFoam"), std::string::npos) << e.what();
+      EXPECT_TRUE(std::filesystem::exists(d + "/kurganov/log.rhoCentralFoam"));  // case kept
+    }
+  }
+  const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
+  const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/tadmor", {});
+  EXPECT_GT(r.steps, 0);
+  EXPECT_GT(r.sim_time, 0.0);
+  expect_finite_positive(cfd::resample_to_lattice(s, d + "/tadmor", 80, 80));
+}
+
+TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
+  const scene::Scene s = cfd_test::wedge_scene(3.0, 10.0);
+  const std::string d = cfd_test::scratch_dir();
+  cfd::make_wedge_block_mesh(s, 5000, d + "/mesh", kSkewGrading);
+  const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
+  const double exact = scene::oblique_pressure_ratio(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 1.4);
+  EXPECT_TRUE(r.steady_state_reached);
+  EXPECT_NEAR(r.wall_pressure_ratio, exact, kSkewedWallTol * exact);
+}
+
+}  // namespace

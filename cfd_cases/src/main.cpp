@@ -12,12 +12,12 @@
 
 #include "cfd/run_case.hpp"
 #include "scene/cli.hpp"
+#include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 
 namespace {
-constexpr int kExitUsage = 2;
 constexpr int kDefaultLatticeNx = 300;
 
 // ny from the domain's aspect ratio when not given.
@@ -64,12 +64,7 @@ int main(int argc, char** argv) {
   rs->add_option("--nx", nx, "lattice cells along x")->check(CLI::Range(1, 100000));
   rs->add_option("--ny", ny, "lattice cells along y (default: from the aspect ratio)")->check(CLI::Range(0, 100000));
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitUsage;  // contract: usage errors exit 2
-  }
+  if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
   return scene::run_guarded("cfd", [&]() -> int {
     const scene::Scene s = scene::load_scene(scene_path);
     if (bm->parsed()) {

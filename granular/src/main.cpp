@@ -21,12 +21,12 @@
 #include "granular/flow_run.hpp"
 #include "granular/flow_setup.hpp"
 #include "scene/cli.hpp"
+#include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
 
 #ifdef GRANULAR_HAVE_MPI
 // MPI lifetime as a value: initialised only when the launcher started us
@@ -105,13 +105,7 @@ int main(int argc, char** argv) {
                   "replicas run at once in threads, per MPI rank (default: one per core; 1 under mpirun)")
       ->check(CLI::Range(1, 1024));
   run->add_flag("--dry-run", dry_run, "only validate the scene and print it resolved");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    // contract: usage errors exit 2 (CLI11 would use its own codes).
-    return code == 0 ? 0 : kExitUsage;
-  }
+  if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
   return scene::run_guarded("granular", [&]() -> int {
     const scene::Scene s = scene::load_scene(scene_path);
     if (dry_run) {

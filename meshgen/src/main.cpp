@@ -10,12 +10,9 @@
 
 #include "meshgen/mesh.hpp"
 #include "scene/cli.hpp"
+#include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
-
-namespace {
-constexpr int kExitUsage = 2;
-}
 
 int main(int argc, char** argv) {
   CLI::App app{"meshgen: gmsh grid clustered at the predicted shock (or uniform), written for OpenFOAM"};
@@ -31,14 +28,7 @@ int main(int argc, char** argv) {
   app.add_option("--target-cells", target, "override mesh.target_cells (met within 10%)");
   app.add_flag("--dry-run", dry_run, "validate the scene and shock file, print the resolved scene, mesh nothing");
   app.set_version_flag("--version", scene::version_string());
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    (void)app.exit(e);
-    return kExitUsage;
-  }
+  if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
   scene::install_interrupt_handler();
   return scene::run_guarded("meshgen", [&]() -> int {
     const scene::Scene s = scene::load_scene(scene_path);

@@ -7,6 +7,7 @@
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/cli.hpp"
+#include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
 
@@ -56,14 +57,7 @@ int main(int argc, char** argv) {
     studies->add_option("--docs", so.docs_table, "summary table to write (default: docs/case_studies.md)");
     studies->add_option("--np", so.np, "processes")->check(CLI::PositiveNumber);
 
-    try {
-      app.parse(argc, argv);
-    } catch (const CLI::Success& e) {
-      return app.exit(e);  // --help, --version
-    } catch (const CLI::ParseError& e) {
-      app.exit(e);
-      return 2;  // contract: bad usage is exit 2
-    }
+    if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
 
     if (run->parsed()) {
       scene::Scene s = scene::load_scene(scene_path);

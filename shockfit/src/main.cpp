@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "scene/cli.hpp"
+#include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/progress.hpp"
 #include "shockfit/locate.hpp"
@@ -19,14 +20,7 @@ int main(int argc, char** argv) {
     app.add_option("--out", out_dir, "output directory")->required();
     app.add_option("--field", field, "field to fit (overrides shockfit.field): auto, density, volume_fraction, rho, number_density, v");
     app.set_version_flag("--version", scene::version_string());
-    try {
-      app.parse(argc, argv);
-    } catch (const CLI::Success& e) {
-      return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-      app.exit(e);
-      return 2;  // the contract's usage error, not CLI11's own code
-    }
+    if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
     scene::Scene s = scene::load_scene(scene_path);
     if (!field.empty()) {
       static const char* const kAllowed[] = {"auto", "density", "volume_fraction", "rho", "number_density", "v"};

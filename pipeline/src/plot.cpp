@@ -47,12 +47,16 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
     const auto& s = spec.series[k];
     if (s.x.empty()) continue;
     const bool bars = s.yerr.size() == s.y.size();
-    gp << (first ? "" : ", ") << "$d" << k << (bars ? " using 1:2:3 with yerrorlines" : " with " + s.style)
-       << " title \"" << s.title << "\"";
+    gp << (first ? "" : ", ") << "$d" << k;
+    if (bars) gp << " using 1:2:3 with yerrorlines"; else gp << " with " << s.style;
+    gp << " title \"" << s.title << "\"";
     first = false;
     data << "$d" << k << " << EOD\n";
-    for (std::size_t i = 0; i < s.x.size(); ++i)
-      data << s.x[i] << " " << s.y[i] << (bars ? " " + std::to_string(s.yerr[i]) : "") << "\n";
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      data << s.x[i] << " " << s.y[i];
+      if (bars) data << " " << s.yerr[i];
+      data << "\n";
+    }
     data << "EOD\n";
   }
   if (first) return false;  // nothing to plot

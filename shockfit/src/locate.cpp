@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <limits>
 
 #include "scene/body.hpp"
@@ -27,6 +28,9 @@ constexpr double kOutlierFloorCells = 1.0;
 // The near-axis parabola of a detached shock uses points within this many
 // body lengths of the axis (Billig's hyperbola is a parabola there).
 constexpr double kParabolaReach = 0.5;
+// Blunt bodies' granular bow shocks are broad and stand far off: reach twice
+// as far for enough points (the parabola is then a coarser approximation).
+constexpr double kBluntParabolaReach = 1.0;
 // Fewest points for the parabola to stand in for the stagnation station.
 constexpr int kMinParabolaPoints = 5;
 // The parabola's vertex and the stagnation station's shock agree within
@@ -35,6 +39,10 @@ constexpr double kVertexAgreeCi = 3.0;
 constexpr double kVertexAgreeCells = 3.0;
 // Two stations closer than this (in lattice spacings) are the same point.
 constexpr double kSamePointCells = 1e-6;
+// A nose whose surface leaves the axis steeper than this (half-angle, deg)
+// is blunt: no shock can attach to it (the largest deflection an attached
+// shock turns, for any Mach number and gamma >= 1, is below 46 deg).
+constexpr double kBluntNoseDeg = 46.0;
 // Shock windows tried per station, in units of shockfit.window.
 constexpr double kWindowWidening[] = {1.0, 2.0, 4.0};
 
@@ -85,6 +93,20 @@ StationFit fit_station(const scene::Lattice& lat, const std::string& field, cons
   sf.fit_error = fit.rms;
   sf.accepted = fit.accepted;
   return sf;
+}
+
+// Half-angle at which the surface leaves the nose (upper side, clockwise
+// from the nose on the CCW outline), in degrees.
+bool blunt_nose(const scene::BodyGeometry& g) {
+  const auto& P = g.polyline;
+  const std::size_t n = P.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(P[i] == g.nose)) continue;
+    const scene::Vec2 up = P[(i + n - 1) % n] - g.nose, lo = P[(i + 1) % n] - g.nose;
+    const double a_up = std::atan2(std::abs(up.y), up.x), a_lo = std::atan2(std::abs(lo.y), lo.x);
+    return std::max(a_up, a_lo) * 180.0 / std::numbers::pi > kBluntNoseDeg;
+  }
+  return false;
 }
 
 // Uncertainty that decides between fields: the interval of the reported number.
@@ -143,25 +165,34 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
   r.stagnation = fit_station(lat, field, d, p, -1, g.nose, {-1.0, 0.0});
   r.stagnation_valid = std::isfinite(r.stagnation.distance);
   const double attached_limit = std::max(kAttachedCells * cell, kAttachedFraction * L);
+  const bool blunt = blunt_nose(g);
   // Near the axis a bow shock is a parabola x = x0 + c y^2 (Billig's
   // hyperbola to second order), fitted through every accepted point there.
   std::vector<scene::Vec2> near_axis, axis_normals;
   std::vector<double> axis_sigma;
   for (const StationFit& f : r.stations)
-    if (f.accepted && std::abs(f.shock.y - g.nose.y) <= kParabolaReach * L) {
+    if (f.accepted && std::abs(f.shock.y - g.nose.y) <= (blunt ? kBluntParabolaReach : kParabolaReach) * L) {
       near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
       axis_normals.push_back(f.normal);
       axis_sigma.push_back(f.ci / kCi95);
     }
-  const bool have_parabola = near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints);
-  const auto [x0, c] = have_parabola ? fit_axis_parabola(near_axis) : std::pair{kNaN, kNaN};
+  const auto [x0, c] = near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints)
+                           ? fit_axis_parabola(near_axis)
+                           : std::pair{kNaN, kNaN};
+  // A vertex outside the lattice (a nearly flat, scattered set of points)
+  // is no vertex: fall back to the stagnation station.
+  const bool have_parabola = std::isfinite(x0) && x0 >= lat.x0 && x0 <= g.nose.x;
   // A detached shock needs a jump on the stagnation line away from the nose
   // and, where the stations near the axis allow the check, a vertex there
   // too: one noisy profile alone must not turn an attached shock into a bow
   // shock.
+  // On a blunt nose a shock can only stand off: then the parabola alone
+  // (or the stagnation station alone) decides.
   const double vertex_tol = std::max(kVertexAgreeCi * r.stagnation.ci, kVertexAgreeCells * cell);
-  const bool detached = r.stagnation.accepted && r.stagnation.distance > attached_limit &&
-                        (!have_parabola || std::abs(x0 - r.stagnation.shock.x) <= vertex_tol);
+  const bool stagnation_off = r.stagnation.accepted && r.stagnation.distance > attached_limit;
+  const bool parabola_off = have_parabola && std::isfinite(x0) && g.nose.x - x0 > attached_limit;
+  const bool detached = blunt ? (parabola_off || stagnation_off)
+                                      : stagnation_off && (!have_parabola || std::abs(x0 - r.stagnation.shock.x) <= vertex_tol);
 
   auto is_nose_station = [&](const StationFit& f) {
     return scene::norm(f.surface - g.nose) < kSamePointCells * cell && f.normal.x < 0 &&
@@ -186,6 +217,10 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
         r.standoff_ci = 0.5 * (iv.hi - iv.lo) / L;
       }
     }
+  } else if (blunt) {
+    // No shock can attach to a blunt nose: without a standoff, no shock.
+    r.shock = "none";
+    for (StationFit& f : r.stations) f.accepted = false;
   } else {
     // Attached (or none): the shock line through the accepted points. The
     // nose station of a sharp body looks upstream along the axis and finds

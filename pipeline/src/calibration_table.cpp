@@ -69,7 +69,8 @@ std::optional<double> interpolate_restitution(const CalibrationTable& t, double 
   if (t.entries.empty()) return std::nullopt;
   double wsum = 0, esum = 0;
   for (const auto& c : t.entries) {
-    const double d = std::hypot(c.mach - mach, (c.angle_deg - angle_deg) / kAngleScaleDeg);
+    const double d = std::isnan(angle_deg) ? std::abs(c.mach - mach)
+                                           : std::hypot(c.mach - mach, (c.angle_deg - angle_deg) / kAngleScaleDeg);
     if (d < kExactMatch) return c.restitution;
     const double w = 1.0 / (d * d);
     wsum += w;

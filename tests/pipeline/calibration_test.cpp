@@ -1,6 +1,7 @@
 // Calibration table: round trip and interpolation.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "pipeline/calibration.hpp"
@@ -21,6 +22,8 @@ TEST(Calibration, RoundTripAndInterpolation) {
   const double mid = *pipeline::interpolate_restitution(back, 4, 15);       // equidistant
   EXPECT_NEAR(mid, 0.7, 1e-12);
   EXPECT_FALSE(pipeline::interpolate_restitution(pipeline::CalibrationTable{}, 3, 10).has_value());
+  // Blunt bodies (no angle): by Mach alone, M = 3 matches the first entry.
+  EXPECT_DOUBLE_EQ(*pipeline::interpolate_restitution(back, 3, NAN), 0.8);
 }
 
 TEST(Calibration, AppliedOnlyWhenTheSceneLeavesRestitutionUnset) {

@@ -24,7 +24,8 @@ struct CalibrationTable {
 CalibrationTable read_calibration(const std::string& path);  // InputError if malformed
 void write_calibration(const CalibrationTable& t, const std::string& path);
 // Inverse-distance interpolation in (Mach, angle) scaled by (1, 5 deg); an
-// exact match returns its entry's e. nullopt for an empty table.
+// exact match returns its entry's e. A NaN angle (blunt bodies) weighs the
+// entries by Mach number alone. nullopt for an empty table.
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach, double angle_deg);
 
 }  // namespace pipeline

@@ -1,5 +1,6 @@
 #include "cfd/run_case.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cmath>
@@ -47,6 +48,34 @@ void remove_incomplete_times(const std::string& case_dir) {
   for (const auto& d : dirs)
     for (const TimeDir& t : time_dirs(d))
       if (!fs::exists(d + "/" + t.name + "/rho")) fs::remove_all(d + "/" + t.name);
+}
+
+// Checks per plateau window, and how much the density change must still be
+// falling from one window to the next to count as converging.
+constexpr std::size_t kPlateauChecks = 5;
+constexpr double kStillFalling = 0.8;
+
+// A converged shock solution does not bring the density change to zero: cells
+// in the captured shock flicker (rhoCentralFoam's limiter), leaving a floor
+// that grows with shock strength (0.03 per flow-through at Mach 3, 0.05 at
+// Mach 5, 0.15 at Mach 8) while the body force is steady to 1e-3. So a run is
+// also steady once the density change has stopped falling (the mean over the
+// last window is no less than kStillFalling times the window before's) and
+// the body force over the last window stays within force_tol of its mean.
+bool at_noise_floor(const std::vector<HistoryRow>& rows, double force_tol) {
+  if (rows.size() < 2 * kPlateauChecks) return false;
+  const auto last = rows.end() - static_cast<std::ptrdiff_t>(kPlateauChecks);
+  const auto before = last - static_cast<std::ptrdiff_t>(kPlateauChecks);
+  double now = 0, prev = 0, fmin = 1e300, fmax = -1e300, fmean = 0;
+  for (auto it = last; it != rows.end(); ++it) {
+    now += it->drho_l2;
+    const double f = scene::norm(it->force);
+    fmin = std::min(fmin, f);
+    fmax = std::max(fmax, f);
+    fmean += f / static_cast<double>(kPlateauChecks);
+  }
+  for (auto it = before; it != last; ++it) prev += it->drho_l2;
+  return now >= kStillFalling * prev && fmax - fmin <= force_tol * std::abs(fmean);
 }
 
 double seconds_since(Clock::time_point t0) {
@@ -174,8 +203,9 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
         row.wall_seconds = seconds_since(t0);
         row.steps = log.steps_upto(t.time);
         rows.push_back(row);
-        const bool ok = row.flow_throughs >= p.min_time - kMinTimeSlack && row.drho_l2 < p.steady_tol &&
-                        row.dforce < p.force_tol;
+        const bool ok = row.flow_throughs >= p.min_time - kMinTimeSlack &&
+                        ((row.drho_l2 < p.steady_tol && row.dforce < p.force_tol) ||
+                         at_noise_floor(rows, p.force_tol));
         consecutive = ok ? consecutive + 1 : 0;
         if (consecutive >= p.steady_checks && !r.steady_state_reached) {
           r.steady_state_reached = true;

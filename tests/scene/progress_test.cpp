@@ -19,7 +19,9 @@ namespace {
 // Captures what `body` writes to stderr (fd 2).
 template <class F>
 std::string capture_stderr(F body) {
-  const auto path = (std::filesystem::temp_directory_path() / "progress_capture.txt").string();
+  // One file per test process: ctest runs tests in parallel.
+  const auto path =
+      (std::filesystem::temp_directory_path() / ("progress_capture_" + std::to_string(::getpid()) + ".txt")).string();
   std::fflush(stderr);
   const int saved = ::dup(2);
   std::FILE* f = std::fopen(path.c_str(), "w");

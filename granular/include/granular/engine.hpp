@@ -127,16 +127,10 @@ class Engine {
   // f(Vec2 r, Vec2 v) at time() for every disk in the system.
   template <class F>
   void for_each_particle(F&& f) const {
-    const double now = time();
-    const Vec2 g = config().gravity;
-    for (const Particle& p : particles()) {
-      if (!p.alive) continue;
-      const double dt = now - p.t;
-      f(Vec2{p.x + p.vx * dt + 0.5 * g.x * dt * dt, p.y + p.vy * dt + 0.5 * g.y * dt * dt},
-        Vec2{p.vx + g.x * dt, p.vy + g.y * dt});
-    }
+    for_each_particle_species([&](Vec2 r, Vec2 v, int) { f(r, v); });
   }
-  // Same with the particle's species: f(r, v, species).
+  // Same with the particle's species: f(r, v, species). Each disk's lazy
+  // clock is advanced to time() along its exact (parabolic) free flight.
   template <class F>
   void for_each_particle_species(F&& f) const {
     const double now = time();

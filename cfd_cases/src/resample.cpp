@@ -33,8 +33,7 @@ scene::Lattice resample_to_lattice(const scene::Scene& s, const std::string& cas
   const auto T = read_scalar_field(tdir + "/T", m.cells());
   const auto U = read_vector_field(tdir + "/U", m.cells());
 
-  const scene::Domain d = scene::scene_domain(s);
-  scene::Lattice lat(nx, ny, d.xmin, d.ymin, d.width() / nx, d.height() / ny);
+  scene::Lattice lat = scene::domain_lattice(scene::scene_domain(s), nx, ny);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto& f_rho = lat.add("rho", nan);
   auto& f_u = lat.add("u", nan);

@@ -14,6 +14,10 @@ namespace scene {
 Lattice::Lattice(int nx_, int ny_, double x0_, double y0_, double dx_, double dy_)
     : nx(nx_), ny(ny_), x0(x0_), y0(y0_), dx(dx_), dy(dy_) {}
 
+Lattice domain_lattice(const Domain& d, int nx, int ny) {
+  return Lattice(nx, ny, d.xmin, d.ymin, d.width() / nx, d.height() / ny);
+}
+
 std::vector<double>& Lattice::add(const std::string& name, double value) {
   auto& f = fields[name];
   f.assign(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), value);

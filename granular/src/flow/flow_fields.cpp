@@ -63,8 +63,7 @@ double standard_error(const std::vector<double>& x) {
 }  // namespace
 
 scene::Lattice flow_lattice(const FlowSetup& f, int nx, int ny) {
-  const scene::Domain& d = f.domain;
-  return scene::Lattice(nx, ny, d.xmin, d.ymin, d.width() / nx, d.height() / ny);
+  return scene::domain_lattice(f.domain, nx, ny);
 }
 
 Binner::Binner(const FlowSetup& f, const scene::Lattice& g)

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.hpp"
+
 namespace scene {
 
 struct Lattice {
@@ -26,6 +28,10 @@ struct Lattice {
   // neighbour is NaN (e.g. inside the body).
   bool sample(const std::string& name, double x, double y, double& out) const;
 };
+
+// An nx x ny lattice spanning the domain: the one grid granular fields, CFD
+// resampling and shockfit share.
+Lattice domain_lattice(const Domain& d, int nx, int ny);
 
 void write_vti(const Lattice& lat, const std::string& path);  // atomic
 Lattice read_vti(const std::string& path);                     // InputError on bad files

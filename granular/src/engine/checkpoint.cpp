@@ -2,7 +2,7 @@
 // their bytes), including the cell lists' order and every prediction, so a
 // restored engine takes exactly the same decisions: the continuation is
 // bit-identical to an uninterrupted run. The calendar is rebuilt from the
-// stored keys (its ranking is a pure function of them).
+// stored predictions (its order, (time, slot), is a pure function of them).
 #include <cstring>
 #include <istream>
 #include <ostream>
@@ -16,7 +16,7 @@ namespace granular {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '1'};
+constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '2'};
 
 template <class T>
 void put(std::ostream& o, const T& v) {
@@ -89,9 +89,6 @@ void Engine::save(std::ostream& o) const {
   put(o, m.energy_since);
   put(o, m.events);
   put(o, m.next_reorder);
-  std::vector<double> keys(m.cal.capacity());
-  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = m.cal.key(i);
-  put_vec(o, keys);
   if (!o) throw scene::RunError("checkpoint: write failed");
 }
 
@@ -120,13 +117,7 @@ Engine Engine::load(std::istream& in) {
   get(in, m.energy_since);
   get(in, m.events);
   get(in, m.next_reorder);
-  std::vector<double> keys;
-  get_vec(in, keys);
-  if (m.started) {
-    m.cal.resize(keys.size());
-    for (std::size_t i = 0; i < keys.size(); ++i) m.cal.set_quiet(i, keys[i]);
-    m.cal.rebuild();
-  }
+  if (m.started) m.rebuild_calendar();
   return e;
 }
 

@@ -22,6 +22,15 @@ constexpr double kRecoveryTolerance = 1e-9;
 constexpr double kSegmentEndSlack = 1e-9;
 // Interrupt polling period (events).
 constexpr std::uint64_t kPollMask = 1023;
+// Calendar look-ahead of the four prefetch stages, in calendar entries
+// (stale ones included): each stage far enough behind the previous one that
+// its loads (~0.1 us) have arrived, the last just ahead of processing.
+constexpr std::size_t kPrefetchRecords = 16;
+constexpr std::size_t kPrefetchPartner = 8;
+constexpr std::size_t kPrefetchNeighbours = 4;
+constexpr std::size_t kPrefetchMore = 2;
+// Pending event times sampled to estimate the event rate of a new calendar.
+constexpr std::size_t kRateSample = 4096;
 // Slots are renumbered in Morton (Z) order of their cells every this many
 // collisions per disk, so that a neighbourhood sits in nearby memory: the
 // large-N rate is bound by cache and TLB misses. Small systems fit in cache
@@ -73,7 +82,117 @@ void Engine::Impl::cell_remove(std::int32_t i, int c) {
 }
 
 void Engine::Impl::schedule(std::int32_t i) {
-  cal.set(static_cast<std::size_t>(i), std::min(s[i].coll_t, s[i].cell_t));
+  detail::Slot& si = s[i];
+  const double t = std::min(si.coll_t, si.cell_t);
+  ++si.qver;  // the previous entry of this slot is now stale
+  if (t != kNever) cal.push({t, static_cast<std::uint32_t>(i), si.qver});
+}
+
+// The event loop reads the calendar a few entries ahead and asks for the
+// memory those events will touch, in four stages, each using what the
+// previous stage brought in (a hint only: a stale entry costs nothing).
+void Engine::Impl::prefetch_ahead() {
+  using Entry = detail::Calendar::Entry;
+  cal.each_ahead(0, kPrefetchRecords, [this](const Entry& e) { prefetch_records(e.slot); });
+  cal.each_ahead(1, kPrefetchPartner, [this](const Entry& e) {
+    if (live(e)) prefetch_partner(e.slot);
+  });
+  cal.each_ahead(2, kPrefetchNeighbours, [this](const Entry& e) {
+    if (live(e)) prefetch_neighbours(e.slot);
+  });
+  cal.each_ahead(3, kPrefetchMore, [this](const Entry& e) {
+    if (live(e)) prefetch_more(e.slot);
+  });
+}
+
+// Stage one: the slot's records.
+void Engine::Impl::prefetch_records(std::size_t i) const {
+  __builtin_prefetch(&p[i]);
+  __builtin_prefetch(&s[i]);
+}
+
+void Engine::Impl::prefetch_heads(int cell, int dcx, int dcy) const {
+  const int cx = cell % ncx + dcx, cy = cell / ncx + dcy;
+  if (cx < 0 || cx >= ncx || cy < 0 || cy >= ncy) return;
+  __builtin_prefetch(&head[static_cast<std::size_t>(cy * ncx + cx)]);
+}
+
+// Stage two: the partner's records and the cell heads the event will scan
+// (the 3x3 block for a collision, the newly adjacent row for a crossing).
+void Engine::Impl::prefetch_partner(std::size_t i) const {
+  const detail::Slot& si = s[i];
+  const int c = p[i].cell;
+  if (si.cell_t <= si.coll_t) {
+    const int dx = si.cell_dir == 0 ? -2 : si.cell_dir == 1 ? 2 : 0;
+    const int dy = si.cell_dir == 2 ? -2 : si.cell_dir == 3 ? 2 : 0;
+    for (int k = -1; k <= 1; ++k) prefetch_heads(c, dx != 0 ? dx : k, dy != 0 ? dy : k);
+    return;
+  }
+  if (si.type == EventType::disk) {
+    __builtin_prefetch(&p[static_cast<std::size_t>(si.partner)]);
+    __builtin_prefetch(&s[static_cast<std::size_t>(si.partner)]);
+  }
+  for (int dy = -1; dy <= 1; ++dy) prefetch_heads(c, -1, dy), prefetch_heads(c, 1, dy);
+}
+
+// First disks of the 3x3 cells around `cell` (their heads were requested
+// a stage earlier); with `second`, the disks after those (one stage later).
+void Engine::Impl::prefetch_cell_disks(int cell, bool second) const {
+  const int cx = cell % ncx, cy = cell / ncx;
+  for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ncy - 1); ++y)
+    for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, ncx - 1); ++x) {
+      std::int32_t k = head[static_cast<std::size_t>(y * ncx + x)];
+      if (second && k >= 0) k = p[static_cast<std::size_t>(k)].next;
+      if (k >= 0) __builtin_prefetch(&p[static_cast<std::size_t>(k)]);
+    }
+}
+
+// Stage three: the partner's 3x3 cell heads and the first disk of each of
+// the slot's own neighbour cells.
+void Engine::Impl::prefetch_neighbours(std::size_t i) const {
+  const detail::Slot& si = s[i];
+  if (si.cell_t <= si.coll_t) return;
+  if (si.type == EventType::disk) {
+    const int cj = p[static_cast<std::size_t>(si.partner)].cell;
+    for (int dy = -1; dy <= 1; ++dy) prefetch_heads(cj, -1, dy), prefetch_heads(cj, 1, dy);
+  }
+  prefetch_cell_disks(p[i].cell, false);
+}
+
+// Stage four: the partner's first neighbour disks and the slot's second ones.
+void Engine::Impl::prefetch_more(std::size_t i) const {
+  const detail::Slot& si = s[i];
+  if (si.cell_t <= si.coll_t) return;
+  if (si.type == EventType::disk) prefetch_cell_disks(p[static_cast<std::size_t>(si.partner)].cell, false);
+  prefetch_cell_disks(p[i].cell, true);
+}
+
+// Empties the calendar and schedules every live slot again, with the bucket
+// width tuned to the event rate measured so far (or estimated from the
+// pending events). Slots renumbered since are fine: entries are rebuilt.
+void Engine::Impl::rebuild_calendar() {
+  std::size_t live = 0;
+  std::vector<double> ahead;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double t = std::min(s[i].coll_t, s[i].cell_t);
+    if (!p[i].alive || t == kNever) continue;
+    ++live;
+    if (ahead.size() < kRateSample) ahead.push_back(t - now);
+  }
+  double rate = cal.measured_rate(now);
+  if (!(rate > 0.0) && !ahead.empty()) {
+    // Before any measurement: a slot's next event is typically the median
+    // time ahead away.
+    auto mid = ahead.begin() + static_cast<std::ptrdiff_t>(ahead.size() / 2);
+    std::nth_element(ahead.begin(), mid, ahead.end());
+    if (*mid > 0.0) rate = static_cast<double>(live) / *mid;
+  }
+  cal.reset(now, live, rate);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double t = std::min(s[i].coll_t, s[i].cell_t);
+    if (!p[i].alive || t == kNever) continue;
+    cal.push({t, static_cast<std::uint32_t>(i), s[i].qver});
+  }
 }
 
 // Next crossing of a face of the particle's cell (state at `now`).
@@ -224,8 +343,6 @@ void Engine::Impl::predict(std::int32_t i) {
 
 void Engine::Impl::process(std::int32_t i) {
   detail::Slot& si = s[i];
-  cal.prefetch(static_cast<std::size_t>(i));
-  if (si.type == EventType::disk) cal.prefetch(static_cast<std::size_t>(si.partner));
   if (si.cell_t <= si.coll_t) {
     cross_cell(i);
     return;
@@ -404,7 +521,7 @@ void Engine::Impl::remove(std::int32_t i) {
   s[i].coll_t = kNever;
   s[i].cell_t = kNever;
   s[i].type = EventType::none;
-  cal.set(static_cast<std::size_t>(i), kNever);
+  ++s[i].qver;  // its calendar entry is stale
   free_slots.push_back(i);
   ++st.removed;
 }
@@ -429,8 +546,6 @@ void Engine::Impl::reorder() {
   for (std::size_t k = 0; k < n; ++k) new_index[static_cast<std::size_t>(order[k].second)] = static_cast<std::int32_t>(k);
   // Apply the permutation in place (cycle by cycle): a copy of the arrays
   // would double the peak memory of a large system.
-  std::vector<double> keys(n);
-  for (std::size_t k = 0; k < n; ++k) keys[k] = cal.key(static_cast<std::size_t>(order[k].second));
   for (std::size_t k = 0; k < n; ++k)
     if (s[k].type == EventType::disk) s[k].partner = new_index[static_cast<std::size_t>(s[k].partner)];
   for (std::size_t start = 0; start < n; ++start) {
@@ -458,19 +573,16 @@ void Engine::Impl::reorder() {
     if (p[k].alive) cell_insert(static_cast<std::int32_t>(k), p[k].cell);
     else free_slots.push_back(static_cast<std::int32_t>(k));
   }
-  for (std::size_t k = 0; k < n; ++k) cal.set_quiet(k, keys[k]);
-  cal.rebuild();
+  rebuild_calendar();
 }
 
 
 void Engine::Impl::build_all() {
-  cal.resize(std::max<std::size_t>(p.size(), 1));
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p[i].alive) continue;
     predict(static_cast<std::int32_t>(i));
-    cal.set_quiet(i, std::min(s[i].coll_t, s[i].cell_t));
   }
-  cal.rebuild();
+  rebuild_calendar();
   started = true;
   reorder();
 }
@@ -489,15 +601,19 @@ void Engine::start() {
 void Engine::run_until(double t, std::uint64_t max_collisions) {
   Impl& m = *impl_;
   if (!m.started) m.build_all();
+  const auto live = [&m](const detail::Calendar::Entry& e) { return m.live(e); };
   while (true) {
-    const std::uint32_t i = m.cal.top();
-    const double tk = m.cal.top_time();
-    if (!(tk <= t) || tk == kNever) break;
+    const detail::Calendar::Entry* e = m.cal.top(live);
+    if (!e || !(e->t <= t)) break;
     if (m.st.collisions >= max_collisions) return;
     if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;
-    m.now = tk;
+    const std::uint32_t i = e->slot;
+    m.now = e->t;
+    m.cal.pop();
+    m.prefetch_ahead();
     m.process(static_cast<std::int32_t>(i));
     if (m.st.collisions >= m.next_reorder) m.reorder();
+    else if (m.cal.wants_retune()) m.rebuild_calendar();
   }
   if (m.st.collisions >= max_collisions) return;
   if (t != kNever && t > m.now) m.now = t;

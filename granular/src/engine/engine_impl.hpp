@@ -24,6 +24,7 @@ struct Slot {
   std::uint32_t pcount;   // partner's collision counter when predicted
   EventType type;
   std::uint8_t cell_dir;  // 0: -x, 1: +x, 2: -y, 3: +y
+  std::uint32_t qver;     // calendar version: only the entry carrying it is live
 };
 
 struct WallGeom {
@@ -84,6 +85,15 @@ struct Engine::Impl {
   void scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx, double vy);
   void schedule(std::int32_t i);
   void process(std::int32_t i);
+  bool live(const detail::Calendar::Entry& e) const { return s[e.slot].qver == e.ver; }
+  void prefetch_ahead();
+  void prefetch_records(std::size_t i) const;
+  void prefetch_heads(int cell, int dcx, int dcy) const;
+  void prefetch_partner(std::size_t i) const;
+  void prefetch_neighbours(std::size_t i) const;
+  void prefetch_cell_disks(int cell, bool second) const;
+  void prefetch_more(std::size_t i) const;
+  void rebuild_calendar();
   void cross_cell(std::int32_t i);
   void collide_disks(std::int32_t i, std::int32_t j);
   void collide_surface(std::int32_t i, Vec2 normal, double e, double overlap);

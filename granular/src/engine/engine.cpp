@@ -83,7 +83,7 @@ void Engine::Impl::cell_remove(std::int32_t i, int c) {
 
 void Engine::Impl::schedule(std::int32_t i) {
   detail::Slot& si = s[i];
-  const double t = std::min(si.coll_t, si.cell_t);
+  const double t = si.key();
   ++si.qver;  // the previous entry of this slot is now stale
   if (t != kNever) cal.push({t, static_cast<std::uint32_t>(i), si.qver});
 }
@@ -122,7 +122,7 @@ void Engine::Impl::prefetch_heads(int cell, int dcx, int dcy) const {
 void Engine::Impl::prefetch_partner(std::size_t i) const {
   const detail::Slot& si = s[i];
   const int c = p[i].cell;
-  if (si.cell_t <= si.coll_t) {
+  if (si.crossing_first()) {
     const int dx = si.cell_dir == 0 ? -2 : si.cell_dir == 1 ? 2 : 0;
     const int dy = si.cell_dir == 2 ? -2 : si.cell_dir == 3 ? 2 : 0;
     for (int k = -1; k <= 1; ++k) prefetch_heads(c, dx != 0 ? dx : k, dy != 0 ? dy : k);
@@ -132,7 +132,13 @@ void Engine::Impl::prefetch_partner(std::size_t i) const {
     __builtin_prefetch(&p[static_cast<std::size_t>(si.partner)]);
     __builtin_prefetch(&s[static_cast<std::size_t>(si.partner)]);
   }
-  for (int dy = -1; dy <= 1; ++dy) prefetch_heads(c, -1, dy), prefetch_heads(c, 1, dy);
+  prefetch_block_heads(c);
+}
+
+// The 3x3 block of cell heads around `cell`: three rows, each asked for at
+// both ends (a row of three heads can straddle a cache line).
+void Engine::Impl::prefetch_block_heads(int cell) const {
+  for (int dy = -1; dy <= 1; ++dy) prefetch_heads(cell, -1, dy), prefetch_heads(cell, 1, dy);
 }
 
 // First disks of the 3x3 cells around `cell` (their heads were requested
@@ -151,10 +157,9 @@ void Engine::Impl::prefetch_cell_disks(int cell, bool second) const {
 // the slot's own neighbour cells.
 void Engine::Impl::prefetch_neighbours(std::size_t i) const {
   const detail::Slot& si = s[i];
-  if (si.cell_t <= si.coll_t) return;
+  if (si.crossing_first()) return;
   if (si.type == EventType::disk) {
-    const int cj = p[static_cast<std::size_t>(si.partner)].cell;
-    for (int dy = -1; dy <= 1; ++dy) prefetch_heads(cj, -1, dy), prefetch_heads(cj, 1, dy);
+    prefetch_block_heads(p[static_cast<std::size_t>(si.partner)].cell);
   }
   prefetch_cell_disks(p[i].cell, false);
 }
@@ -162,7 +167,7 @@ void Engine::Impl::prefetch_neighbours(std::size_t i) const {
 // Stage four: the partner's first neighbour disks and the slot's second ones.
 void Engine::Impl::prefetch_more(std::size_t i) const {
   const detail::Slot& si = s[i];
-  if (si.cell_t <= si.coll_t) return;
+  if (si.crossing_first()) return;
   if (si.type == EventType::disk) prefetch_cell_disks(p[static_cast<std::size_t>(si.partner)].cell, false);
   prefetch_cell_disks(p[i].cell, true);
 }
@@ -174,7 +179,7 @@ void Engine::Impl::rebuild_calendar() {
   std::size_t live = 0;
   std::vector<double> ahead;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double t = std::min(s[i].coll_t, s[i].cell_t);
+    const double t = s[i].key();
     if (!p[i].alive || t == kNever) continue;
     ++live;
     if (ahead.size() < kRateSample) ahead.push_back(t - now);
@@ -189,7 +194,7 @@ void Engine::Impl::rebuild_calendar() {
   }
   cal.reset(now, live, rate);
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double t = std::min(s[i].coll_t, s[i].cell_t);
+    const double t = s[i].key();
     if (!p[i].alive || t == kNever) continue;
     cal.push({t, static_cast<std::uint32_t>(i), s[i].qver});
   }
@@ -343,7 +348,7 @@ void Engine::Impl::predict(std::int32_t i) {
 
 void Engine::Impl::process(std::int32_t i) {
   detail::Slot& si = s[i];
-  if (si.cell_t <= si.coll_t) {
+  if (si.crossing_first()) {
     cross_cell(i);
     return;
   }
@@ -526,12 +531,12 @@ void Engine::Impl::remove(std::int32_t i) {
   ++st.removed;
 }
 
-void Engine::Impl::reorder() {
+bool Engine::Impl::reorder() {
   const std::size_t n = p.size();
   std::size_t alive = 0;
   for (const Particle& q : p) alive += q.alive ? 1 : 0;
   next_reorder = st.collisions + static_cast<std::uint64_t>(kReorderCollisionsPerDisk * static_cast<double>(alive));
-  if (alive < kReorderMinDisks) return;
+  if (alive < kReorderMinDisks) return false;
   std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Particle& q = p[i];
@@ -574,17 +579,16 @@ void Engine::Impl::reorder() {
     else free_slots.push_back(static_cast<std::int32_t>(k));
   }
   rebuild_calendar();
+  return true;
 }
-
 
 void Engine::Impl::build_all() {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p[i].alive) continue;
     predict(static_cast<std::int32_t>(i));
   }
-  rebuild_calendar();
   started = true;
-  reorder();
+  if (!reorder()) rebuild_calendar();
 }
 
 // ---------------------------------------------------------------- public

@@ -25,6 +25,9 @@ struct Slot {
   EventType type;
   std::uint8_t cell_dir;  // 0: -x, 1: +x, 2: -y, 3: +y
   std::uint32_t qver;     // calendar version: only the entry carrying it is live
+
+  double key() const { return coll_t < cell_t ? coll_t : cell_t; }  // next event time
+  bool crossing_first() const { return cell_t <= coll_t; }          // next event is a cell crossing
 };
 
 struct WallGeom {
@@ -66,7 +69,7 @@ struct Engine::Impl {
   std::uint64_t events = 0;
   std::uint64_t next_reorder = 0;  // collision count of the next spatial sort
 
-  void reorder();
+  bool reorder();  // true when the slots were renumbered (and the calendar rebuilt)
   void init(EngineConfig c);
   // Geometry helpers.
   int cell_of(double x, double y) const;
@@ -89,6 +92,7 @@ struct Engine::Impl {
   void prefetch_ahead();
   void prefetch_records(std::size_t i) const;
   void prefetch_heads(int cell, int dcx, int dcy) const;
+  void prefetch_block_heads(int cell) const;
   void prefetch_partner(std::size_t i) const;
   void prefetch_neighbours(std::size_t i) const;
   void prefetch_cell_disks(int cell, bool second) const;

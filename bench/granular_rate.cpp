@@ -1,16 +1,24 @@
 // Benchmark (not a test): collisions per second of elastic hard disks at
 // packing fraction 0.40 in a periodic box, for several N, and the memory
-// the engine holds per particle. Usage:
-//   granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0] N [N ...]
-// Prints one line per N: median rate over the repeats (after a melt of
-// 5 collisions per particle that is not timed).
+// the engine holds per particle.
+//
+//   granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0]
+//                 [--interleave] N[:PER_PARTICLE] [N[:PER_PARTICLE] ...]
+//
+// Each run melts a lattice start with 5 collisions per disk (not timed),
+// then times PER_PARTICLE collisions per disk. One line per N: the median
+// rate over the repeats, by CPU time and by wall time. With --interleave the
+// repeats are rounds over all sizes back to back (a noisy shared host then
+// affects the sizes alike), and the last line gives the rate of the last N
+// over the first: the ratio of the medians and the median of the per-round
+// ratios, with their quartiles.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <ctime>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -20,6 +28,16 @@
 namespace {
 
 constexpr double kMeltPerParticle = 5.0;
+
+struct Size {
+  long n = 0;
+  double per_particle = 0.0;
+};
+
+struct Run {
+  double cpu_rate = 0, wall_rate = 0, bytes = 0;
+  std::uint64_t collisions = 0;
+};
 
 // CPU time of this process: on a shared machine it is closer to what the
 // code costs than wall time (reported too).
@@ -40,53 +58,113 @@ long peak_rss_kb() {
   return kb;
 }
 
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double at = q * static_cast<double>(v.size() - 1);
+  const auto lo = static_cast<std::size_t>(at);
+  const std::size_t hi = std::min(lo + 1, v.size() - 1);
+  return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+Run run_once(const Size& size, double nu, double min_cell, std::uint64_t seed) {
+  granular::BoxSetup b;
+  b.particles = size.n;
+  b.width = b.height = std::sqrt(static_cast<double>(size.n) * std::numbers::pi / 4.0 / nu);
+  b.packing_fraction = nu;
+  b.seed = seed;
+  b.min_cell = min_cell;
+  granular::Engine e = granular::make_box_engine(b);
+  e.run_collisions(static_cast<std::uint64_t>(kMeltPerParticle * static_cast<double>(size.n)));
+  const auto count = static_cast<std::uint64_t>(size.per_particle * static_cast<double>(size.n));
+  const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = cpu_seconds();
+  e.run_collisions(count);
+  const double cpu = cpu_seconds() - c0;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return {static_cast<double>(count) / cpu, static_cast<double>(count) / wall, e.bytes_per_particle(), count};
+}
+
+int usage(int code) {
+  std::fprintf(code == 0 ? stdout : stderr,
+               "usage: granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0]\n"
+               "                     [--interleave] N[:PER_PARTICLE] ...\n"
+               "Collisions per second (CPU and wall) of elastic disks in a periodic box.\n");
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   double nu = 0.4, per_particle = 20.0, min_cell = 0.0;
   int repeats = 3;
-  std::vector<long> sizes;
+  bool interleave = false;
+  std::vector<std::string> specs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--nu" && i + 1 < argc) nu = std::atof(argv[++i]);
-    else if (a == "--per-particle" && i + 1 < argc) per_particle = std::atof(argv[++i]);
-    else if (a == "--repeats" && i + 1 < argc) repeats = std::atoi(argv[++i]);
-    else if (a == "--cell" && i + 1 < argc) min_cell = std::atof(argv[++i]);
-    else sizes.push_back(std::atol(a.c_str()));
-  }
-  if (sizes.empty()) sizes = {10000, 32000, 1000000};
-  std::printf("%10s %6s %12s %9s %9s %14s %14s %9s %12s\n", "N", "nu", "collisions", "wall_s", "cpu_s",
-              "coll/s(wall)", "coll/s(cpu)", "bytes/N", "peak_rss_MB");
-  for (const long n : sizes) {
-    std::vector<double> rates, cpu_rates;
-    double bytes = 0, secs = 0, cpu = 0;
-    std::uint64_t done = 0;
-    for (int r = 0; r < repeats; ++r) {
-      granular::BoxSetup b;
-      b.particles = n;
-      b.width = b.height = std::sqrt(static_cast<double>(n) * std::numbers::pi / 4.0 / nu);
-      b.packing_fraction = nu;
-      b.seed = static_cast<std::uint64_t>(r + 1);
-      b.min_cell = min_cell;
-      granular::Engine e = granular::make_box_engine(b);
-      e.run_collisions(static_cast<std::uint64_t>(kMeltPerParticle * static_cast<double>(n)));
-      const auto count = static_cast<std::uint64_t>(per_particle * static_cast<double>(n));
-      const auto t0 = std::chrono::steady_clock::now();
-      const double c0 = cpu_seconds();
-      e.run_collisions(count);
-      cpu = cpu_seconds() - c0;
-      secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      rates.push_back(static_cast<double>(count) / secs);
-      cpu_rates.push_back(static_cast<double>(count) / cpu);
-      bytes = e.bytes_per_particle();
-      done = count;
+    const bool has_value = i + 1 < argc;
+    if (a == "--help" || a == "-h") return usage(0);
+    if (a == "--nu" && has_value) nu = std::atof(argv[++i]);
+    else if (a == "--per-particle" && has_value) per_particle = std::atof(argv[++i]);
+    else if (a == "--repeats" && has_value) repeats = std::atoi(argv[++i]);
+    else if (a == "--cell" && has_value) min_cell = std::atof(argv[++i]);
+    else if (a == "--interleave") interleave = true;
+    else if (!a.empty() && a[0] != '-') specs.push_back(a);
+    else {
+      std::fprintf(stderr, "granular_rate: unknown or incomplete option '%s'\n", a.c_str());
+      return usage(2);
     }
-    std::sort(rates.begin(), rates.end());
-    std::sort(cpu_rates.begin(), cpu_rates.end());
-    std::printf("%10ld %6.3f %12llu %9.3f %9.3f %14.0f %14.0f %9.1f %12.1f\n", n, nu,
-                static_cast<unsigned long long>(done), secs, cpu, rates[rates.size() / 2],
-                cpu_rates[cpu_rates.size() / 2], bytes, static_cast<double>(peak_rss_kb()) / 1024.0);
+  }
+  if (specs.empty()) specs = {"10000", "32000", "1000000"};
+  std::vector<Size> sizes;
+  for (const std::string& spec : specs) {
+    const auto colon = spec.find(':');
+    Size s{std::atol(spec.substr(0, colon).c_str()),
+           colon == std::string::npos ? per_particle : std::atof(spec.substr(colon + 1).c_str())};
+    if (s.n < 16 || !(s.per_particle > 0.0)) {
+      std::fprintf(stderr, "granular_rate: bad size '%s' (N >= 16, PER_PARTICLE > 0)\n", spec.c_str());
+      return 2;
+    }
+    sizes.push_back(s);
+  }
+  if (repeats < 1 || !(nu > 0.0 && nu < 0.8)) {
+    std::fprintf(stderr, "granular_rate: need --repeats >= 1 and 0 < --nu < 0.8\n");
+    return 2;
+  }
+
+  std::printf("%10s %6s %12s %14s %14s %9s %12s\n", "N", "nu", "collisions", "coll/s(wall)",
+              "coll/s(cpu)", "bytes/N", "peak_rss_MB");
+  std::vector<std::vector<Run>> runs(sizes.size());
+  const auto report = [&](std::size_t k) {
+    std::vector<double> cpu, wall;
+    for (const Run& r : runs[k]) cpu.push_back(r.cpu_rate), wall.push_back(r.wall_rate);
+    std::printf("%10ld %6.3f %12llu %14.0f %14.0f %9.1f %12.1f\n", sizes[k].n, nu,
+                static_cast<unsigned long long>(runs[k].back().collisions), quantile(wall, 0.5),
+                quantile(cpu, 0.5), runs[k].back().bytes, static_cast<double>(peak_rss_kb()) / 1024.0);
     std::fflush(stdout);
+  };
+  if (interleave) {
+    for (int r = 0; r < repeats; ++r)
+      for (std::size_t k = 0; k < sizes.size(); ++k)
+        runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
+    for (std::size_t k = 0; k < sizes.size(); ++k) report(k);
+  } else {
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+      for (int r = 0; r < repeats; ++r)
+        runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
+      report(k);
+    }
+  }
+  if (interleave && sizes.size() >= 2) {
+    std::vector<double> first, last, ratio;
+    for (int r = 0; r < repeats; ++r) {
+      first.push_back(runs.front()[static_cast<std::size_t>(r)].cpu_rate);
+      last.push_back(runs.back()[static_cast<std::size_t>(r)].cpu_rate);
+      ratio.push_back(last.back() / first.back());
+    }
+    std::printf("rate(N=%ld) / rate(N=%ld), CPU time: ratio of medians %.3f; per round median %.3f "
+                "(quartiles %.3f-%.3f, %d rounds)\n",
+                sizes.back().n, sizes.front().n, quantile(last, 0.5) / quantile(first, 0.5),
+                quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), repeats);
   }
   return 0;
 }

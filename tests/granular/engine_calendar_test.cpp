@@ -133,6 +133,28 @@ TEST(EngineCalendar, JumpsOverEmptyTimeToFarEntries) {
   EXPECT_EQ(cal.top(all), nullptr);
 }
 
+TEST(EngineCalendar, HugeTimesRebaseInsteadOfOverflowing) {
+  // A nearly stopped disk can predict a cell crossing at 1e300: with
+  // buckets of ~1e-3 the bucket number overflows; the calendar must still
+  // hand the entries out in order (and not spin on an infinite count).
+  Calendar cal;
+  cal.reset(0.0, 1000, 1.0e6);
+  cal.push({2e300, 7, 0});
+  cal.push({0.5, 3, 0});
+  cal.push({1e300, 9, 0});
+  cal.push({1e300, 2, 0});
+  const auto all = [](const Entry&) { return true; };
+  const std::vector<std::pair<double, std::uint32_t>> want{{0.5, 3}, {1e300, 2}, {1e300, 9}, {2e300, 7}};
+  for (const auto& [t, slot] : want) {
+    const Entry* e = cal.top(all);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(e->t, t);
+    EXPECT_EQ(e->slot, slot);
+    cal.pop();
+  }
+  EXPECT_EQ(cal.top(all), nullptr);
+}
+
 TEST(EngineCalendar, MemoryFollowsWhatIsScheduled) {
   // 10^5 live entries, each rescheduled many times: stale entries are
   // dropped as their buckets come up, so memory stays near 16 B per entry

@@ -64,6 +64,9 @@ class Calendar {
   static constexpr double kRetuneFactor = 4.0;
   // Batches smaller than this are sorted by comparison.
   static constexpr std::size_t kSmallBatch = 64;
+  // Bucket counts beyond this re-base the calendar instead (exactly
+  // representable in a double and far from the int64 limit).
+  static constexpr double kMaxBucket = 4.0e18;
   // Look-ahead cursors available to each_ahead().
   static constexpr std::size_t kStages = 4;
 
@@ -193,9 +196,16 @@ class Calendar {
     pos_ = 0;
     cursor_.fill(0);
     if (in_ring_ == 0) {
-      // Only far entries left: jump the ring to the earliest.
+      // Only far entries left: jump the ring to the earliest, re-basing the
+      // bucket count on it where the jump would not fit the counter (times
+      // like 1e300, from a nearly stopped disk, overflow (t - origin) / w).
       const double x = (far_.front().t - origin_) * inv_w_;
-      cur_ = std::max(cur_ + 1, static_cast<std::int64_t>(std::min(x, 4e18)));
+      if (x < kMaxBucket) {
+        cur_ = std::max(cur_ + 1, static_cast<std::int64_t>(x));
+      } else {
+        origin_ = far_.front().t;
+        cur_ = 0;
+      }
     } else {
       ++cur_;
     }

@@ -155,6 +155,34 @@ TEST(EngineCalendar, HugeTimesRebaseInsteadOfOverflowing) {
   EXPECT_EQ(cal.top(all), nullptr);
 }
 
+TEST(EngineCalendar, PileOfSupersededFarEntriesAsksForARebuild) {
+  // Ten slots re-predicting far-off events again and again: the stale far
+  // entries would wait until their time; the calendar asks its owner to
+  // rebuild from the live predictions once they outnumber the live slots.
+  Calendar cal;
+  Model m(10);
+  cal.reset(0.0, 10, 10.0);
+  std::size_t pushes = 0;
+  while (!cal.wants_retune() && pushes < 100000) {
+    m.schedule(cal, static_cast<std::uint32_t>(pushes % 10), 1e9 + static_cast<double>(pushes));
+    ++pushes;
+  }
+  EXPECT_TRUE(cal.wants_retune());
+  EXPECT_LE(pushes, Calendar::kFarMin + 1);
+  // Rebuilt from the live entries, it hands out exactly those, in order.
+  cal.reset(0.0, 10, 10.0);
+  for (std::uint32_t s = 0; s < 10; ++s) cal.push({m.key[s], s, m.ver[s]});
+  EXPECT_FALSE(cal.wants_retune());
+  const auto live = [&m](const Entry& e) { return m.live(e); };
+  for (const auto& [t, slot] : std::set<std::pair<double, std::uint32_t>>(m.ref)) {
+    const Entry* e = cal.top(live);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(e->t, t);
+    EXPECT_EQ(e->slot, slot);
+    cal.pop();
+  }
+}
+
 TEST(EngineCalendar, MemoryFollowsWhatIsScheduled) {
   // 10^5 live entries, each rescheduled many times: stale entries are
   // dropped as their buckets come up, so memory stays near 16 B per entry

@@ -67,12 +67,15 @@ class Calendar {
   // Bucket counts beyond this re-base the calendar instead (exactly
   // representable in a double and far from the int64 limit).
   static constexpr double kMaxBucket = 4.0e18;
+  // Far-heap size always tolerated before asking for a rebuild.
+  static constexpr std::size_t kFarMin = 4096;
   // Look-ahead cursors available to each_ahead().
   static constexpr std::size_t kStages = 4;
 
   // Empties the calendar and sizes it for `live` scheduled slots that pop
   // about `rate` entries per unit time, starting at time `now`.
   void reset(double now, std::size_t live, double rate) {
+    live_ = live;
     const double n = static_cast<double>(std::max<std::size_t>(live, 1));
     const double batch = std::clamp(n / 16.0, kMinBatch, kTargetBatch);
     target_ = batch;
@@ -111,6 +114,9 @@ class Calendar {
     } else {
       far_.push_back(e);
       std::push_heap(far_.begin(), far_.end(), Later{});
+      // Superseded far entries wait for their (far) time to be dropped; a
+      // disk that keeps predicting far-off events would pile them up.
+      if (far_.size() > std::max(kFarMin, live_)) retune_ = true;
     }
   }
 
@@ -154,8 +160,10 @@ class Calendar {
     for (; c < end; ++c) f(batch_[c]);
   }
 
-  // True once the bucket width is far off the observed batch size: the
-  // owner should reset() with measured_rate() at its convenience.
+  // True once the bucket width is far off the observed batch size, or the
+  // far heap holds more entries than there were live slots: the owner
+  // should reset() (with measured_rate()) and push the live entries again
+  // at its convenience.
   bool wants_retune() const { return retune_; }
   // Entries popped per unit time since reset() (0 before any).
   double measured_rate(double now) const {
@@ -310,6 +318,7 @@ class Calendar {
   double target_ = kMinBatch;
   double w_ = 1.0, inv_w_ = 1.0, origin_ = 0.0;
   std::size_t nb_ = 16;
+  std::size_t live_ = 0;  // live slots at reset()
   std::int64_t cur_ = 0;  // bucket index (from origin_) of the batch
   std::size_t in_ring_ = 0;
   std::vector<Bucket> ring_;

@@ -90,6 +90,7 @@ class Calendar {
     chunk_next_.clear();
     free_chunks_.clear();
     origin_ = now;
+    reset_time_ = now;
     cur_ = 0;
     in_ring_ = 0;
     batch_.clear();
@@ -167,7 +168,7 @@ class Calendar {
   bool wants_retune() const { return retune_; }
   // Entries popped per unit time since reset() (0 before any).
   double measured_rate(double now) const {
-    return popped_ > 0 && now > origin_ ? static_cast<double>(popped_) / (now - origin_) : 0.0;
+    return popped_ > 0 && now > reset_time_ ? static_cast<double>(popped_) / (now - reset_time_) : 0.0;
   }
 
   double bytes() const {
@@ -316,7 +317,9 @@ class Calendar {
   }
 
   double target_ = kMinBatch;
-  double w_ = 1.0, inv_w_ = 1.0, origin_ = 0.0;
+  double w_ = 1.0, inv_w_ = 1.0;
+  double origin_ = 0.0;      // time of bucket 0 (moved by a re-basing jump)
+  double reset_time_ = 0.0;  // time of reset(), for measured_rate()
   std::size_t nb_ = 16;
   std::size_t live_ = 0;  // live slots at reset()
   std::int64_t cur_ = 0;  // bucket index (from origin_) of the batch

@@ -112,9 +112,9 @@ void Engine::Impl::prefetch_records(std::size_t i) const {
 }
 
 void Engine::Impl::prefetch_heads(int cell, int dcx, int dcy) const {
-  const int cx = cell % ncx + dcx, cy = cell / ncx + dcy;
-  if (cx < 0 || cx >= ncx || cy < 0 || cy >= ncy) return;
-  __builtin_prefetch(&head[static_cast<std::size_t>(cy * ncx + cx)]);
+  int c = 0;
+  double shx = 0.0, shy = 0.0;
+  if (neighbour_cell(cell % ncx + dcx, cell / ncx + dcy, c, shx, shy)) __builtin_prefetch(&head[static_cast<std::size_t>(c)]);
 }
 
 // Stage two: the partner's records and the cell heads the event will scan
@@ -145,9 +145,12 @@ void Engine::Impl::prefetch_block_heads(int cell) const {
 // a stage earlier); with `second`, the disks after those (one stage later).
 void Engine::Impl::prefetch_cell_disks(int cell, bool second) const {
   const int cx = cell % ncx, cy = cell / ncx;
-  for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, ncy - 1); ++y)
-    for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, ncx - 1); ++x) {
-      std::int32_t k = head[static_cast<std::size_t>(y * ncx + x)];
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int c = 0;
+      double shx = 0.0, shy = 0.0;
+      if (!neighbour_cell(cx + dx, cy + dy, c, shx, shy)) continue;
+      std::int32_t k = head[static_cast<std::size_t>(c)];
       if (second && k >= 0) k = p[static_cast<std::size_t>(k)].next;
       if (k >= 0) __builtin_prefetch(&p[static_cast<std::size_t>(k)]);
     }

@@ -4,9 +4,13 @@
 //
 // Time is cut into buckets of width w; a ring of buckets covers the near
 // future, each an unsorted list of fixed-size chunks, so a push is one
-// write at the tail of a short list. The bucket being processed (the
-// "batch") is sorted once when it is reached, by a distribution sort that
-// costs O(1) per entry, and read in order; the rare push into the batch's
+// write at the tail of a short list. A ring entry holds only the slot and
+// its version (8 bytes): when its bucket is reached, the live entries get
+// their time back from the owner (the slot's scheduled time, which cannot
+// have changed while the version did not), and the stale ones are dropped
+// there, in one pass whose lookups overlap, instead of one by one as they
+// come up. The bucket being processed (the "batch") is then sorted once, by
+// a distribution sort that costs O(1) per entry, and read in order; the rare push into the batch's
 // own time span goes to a small heap merged with it, and pushes beyond the
 // ring to a "far" heap drained into the ring as it turns. Superseded
 // entries are not searched for: each carries its slot's version, and an
@@ -41,12 +45,16 @@ class Calendar {
  private:
   // Entries per chunk of bucket storage (256 B): small, so that the
   // partly filled tail chunks of a small system's ring cost little memory.
-  static constexpr std::uint32_t kChunk = 16;
+  static constexpr std::uint32_t kChunk = 32;
   struct Bucket {  // a list of chunks; the tail chunk is filled first
     std::uint32_t head = 0, tail = 0, count = 0;
   };
+  struct RingEntry {  // the time is the slot's, looked up when the bucket is taken
+    std::uint32_t slot;
+    std::uint32_t ver;
+  };
   struct Chunk {
-    Entry e[kChunk];
+    RingEntry e[kChunk];
   };
 
  public:
@@ -110,7 +118,7 @@ class Calendar {
       heap_.push_back(e);
       std::push_heap(heap_.begin(), heap_.end(), Later{});
     } else if (x < static_cast<double>(cur_ + static_cast<std::int64_t>(nb_))) {
-      append(ring_[static_cast<std::size_t>(static_cast<std::int64_t>(x)) & (nb_ - 1)], e);
+      append(ring_[static_cast<std::size_t>(static_cast<std::int64_t>(x)) & (nb_ - 1)], {e.slot, e.ver});
       ++in_ring_;
     } else {
       far_.push_back(e);
@@ -122,13 +130,15 @@ class Calendar {
   }
 
   // The earliest entry for which valid(entry) holds, dropping the stale
-  // ones on the way; nullptr when the calendar is empty.
-  template <class Valid>
-  const Entry* top(Valid&& valid) {
+  // ones on the way; nullptr when the calendar is empty. time_of(slot) is
+  // the time the slot is scheduled for (read for entries whose version is
+  // still the slot's).
+  template <class Valid, class TimeOf>
+  const Entry* top(Valid&& valid, TimeOf&& time_of) {
     while (true) {
       const Entry* e = peek();
       if (!e) {
-        if (!advance()) return nullptr;
+        if (!advance(valid, time_of)) return nullptr;
         continue;
       }
       if (valid(*e)) return e;
@@ -198,7 +208,8 @@ class Calendar {
   }
 
   // Moves to the next non-empty bucket: returns false when nothing is left.
-  bool advance() {
+  template <class Valid, class TimeOf>
+  bool advance(Valid& valid, TimeOf& time_of) {
     if (in_ring_ == 0 && far_.empty()) return false;
     if (pos_ > 0) note_batch(static_cast<double>(pos_));
     batch_.clear();
@@ -219,7 +230,7 @@ class Calendar {
       ++cur_;
     }
     drain_far();
-    take(ring_[static_cast<std::size_t>(cur_) & (nb_ - 1)]);
+    take(ring_[static_cast<std::size_t>(cur_) & (nb_ - 1)], valid, time_of);
     sort_batch();
     return true;
   }
@@ -260,7 +271,7 @@ class Calendar {
 
   // Appends to a bucket's tail chunk, taking a chunk from the shared pool
   // when it is full (recently freed chunks first: they are in cache).
-  void append(Bucket& b, const Entry& e) {
+  void append(Bucket& b, const RingEntry& e) {
     const std::uint32_t at = b.count % kChunk;
     if (at == 0) {
       std::uint32_t c;
@@ -280,19 +291,27 @@ class Calendar {
     ++b.count;
   }
 
-  // Moves a bucket's entries into the batch and returns its chunks.
-  void take(Bucket& b) {
+  // Moves a bucket's live entries into the batch, with their times, and
+  // returns its chunks. Branch-free, so that the lookups of successive
+  // entries (mostly cache misses in a large system) overlap.
+  template <class Valid, class TimeOf>
+  void take(Bucket& b, Valid& valid, TimeOf& time_of) {
     in_ring_ -= b.count;
     batch_.resize(b.count);
     std::uint32_t left = b.count;
     std::size_t out = 0;
     for (std::uint32_t c = b.head; left > 0; c = chunk_next_[c]) {
       const std::uint32_t n = std::min<std::uint32_t>(left, kChunk);
-      std::copy_n(chunks_[c].e, n, batch_.begin() + static_cast<std::ptrdiff_t>(out));
-      out += n;
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const RingEntry r = chunks_[c].e[k];
+        const Entry e{time_of(r.slot), r.slot, r.ver};
+        batch_[out] = e;
+        out += valid(e) ? 1 : 0;
+      }
       left -= n;
       free_chunks_.push_back(c);
     }
+    batch_.resize(out);
     b = Bucket{};
   }
 

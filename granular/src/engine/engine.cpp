@@ -609,8 +609,9 @@ void Engine::run_until(double t, std::uint64_t max_collisions) {
   Impl& m = *impl_;
   if (!m.started) m.build_all();
   const auto live = [&m](const detail::Calendar::Entry& e) { return m.live(e); };
+  const auto time_of = [&m](std::uint32_t slot) { return m.s[slot].key(); };
   while (true) {
-    const detail::Calendar::Entry* e = m.cal.top(live);
+    const detail::Calendar::Entry* e = m.cal.top(live, time_of);
     if (!e || !(e->t <= t)) break;
     if (m.st.collisions >= max_collisions) return;
     if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;

@@ -16,7 +16,7 @@ namespace granular {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '2'};
+constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '3'};
 
 template <class T>
 void put(std::ostream& o, const T& v) {

@@ -45,10 +45,44 @@ struct Engine::Impl {
   std::size_t ns = 1;
   double max_diameter = 1.0;
   // Grid.
+  // A cell is named by its column and row packed in one int (cx | cy << 16),
+  // so that finding its neighbours costs no integer division. The list
+  // heads are stored in tiles of 4 x 4 cells, one cache line each: a 3 x 3
+  // block of heads spans 2.25 lines on average instead of ~3.4 in row
+  // order (the heads were a sixth of the cache misses at N = 10^6).
+  static constexpr int kCellBits = 16;
+  static constexpr int kMaxCellsPerSide = (1 << (kCellBits - 1)) - 1;  // cy << 16 fits an int
+  static constexpr std::uint32_t kTile = 4;
+  static int pack_cell(int cx, int cy) { return cx | (cy << kCellBits); }
+  static int cell_x(int c) { return c & ((1 << kCellBits) - 1); }
+  static int cell_y(int c) { return c >> kCellBits; }
+  // The tiled head index is a column share plus a row share.
+  static std::uint32_t head_col(int cx) {
+    const auto x = static_cast<std::uint32_t>(cx);
+    return (x / kTile) * kTile * kTile + x % kTile;
+  }
+  std::uint32_t head_row(int cy) const {
+    const auto y = static_cast<std::uint32_t>(cy);
+    return (y / kTile) * tiles_x * kTile * kTile + (y % kTile) * kTile;
+  }
+  std::size_t head_index(int c) const { return head_row(cell_y(c)) + head_col(cell_x(c)); }
+  std::size_t linear_cell(int c) const {  // row-major index (wall and vertex tables)
+    return static_cast<std::size_t>(cell_y(c)) * static_cast<std::size_t>(ncx) +
+           static_cast<std::size_t>(cell_x(c));
+  }
+  // The (up to) nine cells of the 3 x 3 block around a cell, in row order,
+  // with their periodic image shifts.
+  struct Block {
+    int n = 0;
+    std::uint32_t head[9];
+    double shx[9], shy[9];
+  };
+  void block_of(int cell, Block& b) const;
   int ncx = 1, ncy = 1;
+  std::uint32_t tiles_x = 1;
   double cw = 1, ch = 1, lx = 1, ly = 1;
   bool periodic_x = false, periodic_y = false;
-  std::vector<std::int32_t, detail::HugeAlloc<std::int32_t>> head;  // cell -> first slot
+  std::vector<std::int32_t, detail::HugeAlloc<std::int32_t>> head;  // tiled cell -> first slot
   std::vector<std::int32_t> wall_start, wall_list;      // CSR cell -> walls
   std::vector<std::int32_t> vertex_start, vertex_list;  // CSR cell -> vertices
   std::vector<detail::WallGeom> walls;

@@ -114,9 +114,14 @@ void Engine::Impl::init(EngineConfig c) {
     bad("a periodic side must be at least 3 largest diameters long");
   const double ncells = static_cast<double>(ncx) * static_cast<double>(ncy);
   if (ncells > 2.0e9) bad("too many cells");
+  if (ncx > kMaxCellsPerSide || ncy > kMaxCellsPerSide)
+    bad("more than " + std::to_string(kMaxCellsPerSide) +
+        " cells along a side of the domain: set min_cell larger");
   cw = lx / ncx;
   ch = ly / ncy;
-  head.assign(static_cast<std::size_t>(ncx) * static_cast<std::size_t>(ncy), -1);
+  tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;
+  const std::uint32_t tiles_y = (static_cast<std::uint32_t>(ncy) + kTile - 1) / kTile;
+  head.assign(static_cast<std::size_t>(tiles_x) * tiles_y * kTile * kTile, -1);
 
   // Walls and vertices, registered in every cell a disk centre in which
   // could touch them.
@@ -182,38 +187,27 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
   const double rad = radius[static_cast<std::size_t>(species)];
   if (!(r.x >= cfg.xmin && r.x <= cfg.xmax && r.y >= cfg.ymin && r.y <= cfg.ymax)) return true;
   const int c = cell_of(r.x, r.y);
-  const int cx = c % ncx, cy = c / ncx;
   const Vec2 g = cfg.gravity;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      int x2 = cx + dx, y2 = cy + dy;
-      double shx = 0, shy = 0;
-      if (x2 < 0 || x2 >= ncx) {
-        if (!periodic_x) continue;
-        if (x2 < 0) { x2 += ncx; shx = -lx; } else { x2 -= ncx; shx = lx; }
-      }
-      if (y2 < 0 || y2 >= ncy) {
-        if (!periodic_y) continue;
-        if (y2 < 0) { y2 += ncy; shy = -ly; } else { y2 -= ncy; shy = ly; }
-      }
-      for (std::int32_t k = head[y2 * ncx + x2]; k >= 0; k = p[k].next) {
-        if (k == skip) continue;
-        const Particle& o = p[k];
-        const double dt = now - o.t;
-        const double ox = o.x + o.vx * dt + 0.5 * g.x * dt * dt + shx;
-        const double oy = o.y + o.vy * dt + 0.5 * g.y * dt * dt + shy;
-        const double sig = rad + radius[o.species] - tol;
-        if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
-      }
+  Block b;
+  block_of(c, b);
+  for (int m = 0; m < b.n; ++m) {
+    for (std::int32_t k = head[b.head[m]]; k >= 0; k = p[k].next) {
+      if (k == skip) continue;
+      const Particle& o = p[k];
+      const double dt = now - o.t;
+      const double ox = o.x + o.vx * dt + 0.5 * g.x * dt * dt + b.shx[m];
+      const double oy = o.y + o.vy * dt + 0.5 * g.y * dt * dt + b.shy[m];
+      const double sig = rad + radius[o.species] - tol;
+      if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
     }
   }
   if (!wall_start.empty())
-    for (std::int32_t k = wall_start[c]; k < wall_start[c + 1]; ++k) {
+    for (std::int32_t k = wall_start[linear_cell(c)]; k < wall_start[linear_cell(c) + 1]; ++k) {
       const Wall& w = cfg.walls[wall_list[k]];
       if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
     }
   if (!vertex_start.empty())
-    for (std::int32_t k = vertex_start[c]; k < vertex_start[c + 1]; ++k)
+    for (std::int32_t k = vertex_start[linear_cell(c)]; k < vertex_start[linear_cell(c) + 1]; ++k)
       if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
   return false;
 }

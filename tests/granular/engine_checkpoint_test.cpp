@@ -3,8 +3,10 @@
 
 #include <cstring>
 #include <sstream>
+#include <string>
 
 #include "engine_support.hpp"
+#include "scene/errors.hpp"
 
 namespace granular {
 namespace {
@@ -33,6 +35,18 @@ TEST(EngineCheckpoint, RestartContinuesBitIdentically) {
 TEST(EngineCheckpoint, GarbageIsRejected) {
   std::stringstream buf("not a checkpoint at all");
   EXPECT_THROW(Engine::load(buf), std::exception);
+}
+
+TEST(EngineCheckpoint, OlderFormatIsRefusedByName) {
+  // Format 2 stored cell heads in row order; reading it with the tiled
+  // layout would corrupt the cell lists, so it is refused with a reason.
+  std::stringstream buf(std::string("GRANCKP2") + std::string(64, '\0'));
+  try {
+    Engine::load(buf);
+    FAIL() << "a format-2 checkpoint was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("format 2"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -95,6 +95,10 @@ void Engine::save(std::ostream& o) const {
 Engine Engine::load(std::istream& in) {
   char magic[sizeof(kMagic)] = {};
   in.read(magic, sizeof(magic));
+  if (in && std::memcmp(magic, kMagic, sizeof(kMagic) - 1) == 0 && magic[7] != kMagic[7])
+    throw scene::InputError(std::string("checkpoint: written in format ") + magic[7] +
+                            ", this engine reads format " + kMagic[7] +
+                            " (the memory layout changed): restart the run from its scene");
   if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
     throw scene::InputError("checkpoint: not a granular engine checkpoint");
   Engine e(get_config(in));

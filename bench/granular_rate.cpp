@@ -11,7 +11,12 @@
 // repeats are rounds over all sizes back to back (a noisy shared host then
 // affects the sizes alike), and the last line gives the rate of the last N
 // over the first: the ratio of the medians and the median of the per-round
-// ratios, with their quartiles.
+// ratios, with their quartiles. Each round also times a dependent random
+// read over 128 MiB (a probe of the shared host's memory latency, which
+// moves the large-N rate from hour to hour) and prints one line per round
+// on stderr: probe, rates, ratio.
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +24,8 @@
 #include <cstdlib>
 #include <ctime>
 #include <numbers>
+#include <numeric>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -46,6 +53,44 @@ double cpu_seconds() {
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+// Dependent random reads over a 128 MiB ring of cache lines (one cycle,
+// Sattolo's shuffle): nanoseconds per read, i.e. the latency a large
+// system's cache misses see on this host right now.
+class LatencyProbe {
+ public:
+  LatencyProbe() : lines_(kBytes / kLine) {
+    mem_ = static_cast<std::uint64_t*>(std::aligned_alloc(std::size_t{2} << 20, kBytes));
+    if (!mem_) return;
+    madvise(mem_, kBytes, MADV_HUGEPAGE);  // as the engine's arrays
+    std::vector<std::uint32_t> order(lines_);
+    std::iota(order.begin(), order.end(), 0u);
+    std::mt19937_64 rng(7);
+    for (std::size_t k = lines_ - 1; k > 0; --k) std::swap(order[k], order[rng() % k]);
+    for (std::size_t k = 0; k < lines_; ++k) mem_[static_cast<std::size_t>(order[k]) * kStride] =
+        static_cast<std::uint64_t>(order[(k + 1) % lines_]) * kStride;
+  }
+  ~LatencyProbe() { std::free(mem_); }
+  LatencyProbe(const LatencyProbe&) = delete;
+  LatencyProbe& operator=(const LatencyProbe&) = delete;
+  double ns() const {
+    if (!mem_) return 0.0;
+    std::uint64_t at = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (std::size_t k = 0; k < kReads; ++k) at = mem_[at];
+    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+    asm volatile("" : : "r"(at));  // the chain must be walked, its end is not used
+    return ns / static_cast<double>(kReads);
+  }
+
+ private:
+  static constexpr std::size_t kBytes = std::size_t{128} << 20;
+  static constexpr std::size_t kLine = 64;
+  static constexpr std::size_t kStride = kLine / sizeof(std::uint64_t);
+  static constexpr std::size_t kReads = 2000000;
+  std::size_t lines_;
+  std::uint64_t* mem_ = nullptr;
+};
 
 long peak_rss_kb() {
   FILE* f = std::fopen("/proc/self/status", "r");
@@ -142,10 +187,18 @@ int main(int argc, char** argv) {
                 quantile(cpu, 0.5), runs[k].back().bytes, static_cast<double>(peak_rss_kb()) / 1024.0);
     std::fflush(stdout);
   };
+  std::vector<double> probe;
   if (interleave) {
-    for (int r = 0; r < repeats; ++r)
-      for (std::size_t k = 0; k < sizes.size(); ++k)
+    const LatencyProbe latency;
+    for (int r = 0; r < repeats; ++r) {
+      probe.push_back(latency.ns());
+      std::fprintf(stderr, "round %d/%d: probe %.0f ns, coll/s(cpu)", r + 1, repeats, probe.back());
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
         runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
+        std::fprintf(stderr, " %.0f", runs[k].back().cpu_rate);
+      }
+      std::fprintf(stderr, ", last/first %.3f\n", runs.back().back().cpu_rate / runs.front().back().cpu_rate);
+    }
     for (std::size_t k = 0; k < sizes.size(); ++k) report(k);
   } else {
     for (std::size_t k = 0; k < sizes.size(); ++k) {
@@ -165,6 +218,8 @@ int main(int argc, char** argv) {
                 "(quartiles %.3f-%.3f, %d rounds)\n",
                 sizes.back().n, sizes.front().n, quantile(last, 0.5) / quantile(first, 0.5),
                 quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), repeats);
+    std::printf("host probe, dependent random read over 128 MiB: median %.0f ns (quartiles %.0f-%.0f)\n",
+                quantile(probe, 0.5), quantile(probe, 0.25), quantile(probe, 0.75));
   }
   return 0;
 }

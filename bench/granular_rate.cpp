@@ -12,9 +12,10 @@
 // affects the sizes alike), and the last line gives the rate of the last N
 // over the first: the ratio of the medians and the median of the per-round
 // ratios, with their quartiles. Each round also times a dependent random
-// read over 128 MiB (a probe of the shared host's memory latency, which
-// moves the large-N rate from hour to hour) and prints one line per round
-// on stderr: probe, rates, ratio.
+// read over 64 MiB (a probe of how much of the shared host's L3 this
+// process gets, which moves the large-N rate from hour to hour: ~85 ns when
+// much of it is ours, ~125 ns when the neighbours have it) and prints one
+// line per round on stderr: probe, rates, ratio.
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -54,9 +55,9 @@ double cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// Dependent random reads over a 128 MiB ring of cache lines (one cycle,
+// Dependent random reads over a 64 MiB ring of cache lines (one cycle,
 // Sattolo's shuffle): nanoseconds per read, i.e. the latency a large
-// system's cache misses see on this host right now.
+// system's cache misses see on this host right now (part L3, part DRAM).
 class LatencyProbe {
  public:
   LatencyProbe() : lines_(kBytes / kLine) {
@@ -84,7 +85,7 @@ class LatencyProbe {
   }
 
  private:
-  static constexpr std::size_t kBytes = std::size_t{128} << 20;
+  static constexpr std::size_t kBytes = std::size_t{64} << 20;
   static constexpr std::size_t kLine = 64;
   static constexpr std::size_t kStride = kLine / sizeof(std::uint64_t);
   static constexpr std::size_t kReads = 2000000;
@@ -189,9 +190,8 @@ int main(int argc, char** argv) {
   };
   std::vector<double> probe;
   if (interleave) {
-    const LatencyProbe latency;
     for (int r = 0; r < repeats; ++r) {
-      probe.push_back(latency.ns());
+      probe.push_back(LatencyProbe().ns());  // freed before the runs: not in their peak RSS
       std::fprintf(stderr, "round %d/%d: probe %.0f ns, coll/s(cpu)", r + 1, repeats, probe.back());
       for (std::size_t k = 0; k < sizes.size(); ++k) {
         runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
@@ -218,7 +218,7 @@ int main(int argc, char** argv) {
                 "(quartiles %.3f-%.3f, %d rounds)\n",
                 sizes.back().n, sizes.front().n, quantile(last, 0.5) / quantile(first, 0.5),
                 quantile(ratio, 0.5), quantile(ratio, 0.25), quantile(ratio, 0.75), repeats);
-    std::printf("host probe, dependent random read over 128 MiB: median %.0f ns (quartiles %.0f-%.0f)\n",
+    std::printf("host probe, dependent random read over 64 MiB: median %.0f ns (quartiles %.0f-%.0f)\n",
                 quantile(probe, 0.5), quantile(probe, 0.25), quantile(probe, 0.75));
   }
   return 0;

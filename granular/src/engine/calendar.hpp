@@ -10,9 +10,10 @@
 // have changed while the version did not), and the stale ones are dropped
 // there, in one pass whose lookups overlap, instead of one by one as they
 // come up. The bucket being processed (the "batch") is then sorted once, by
-// a distribution sort that costs O(1) per entry, and read in order; the rare push into the batch's
-// own time span goes to a small heap merged with it, and pushes beyond the
-// ring to a "far" heap drained into the ring as it turns. Superseded
+// a distribution sort that costs O(1) per entry, and read in order; the
+// rare push into the batch's own time span goes to a small heap merged with
+// it, and pushes beyond the ring to a "far" heap drained into the ring as
+// it turns (both keep the time with the entry). Superseded
 // entries are not searched for: each carries its slot's version, and an
 // entry whose version is no longer the slot's is dropped when it comes up
 // (lazy invalidation).

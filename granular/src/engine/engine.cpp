@@ -224,17 +224,17 @@ void Engine::Impl::predict_cell(std::int32_t i) {
   si.cell_dir = dir;
 }
 
+// One axis of a neighbour lookup: the index one step outside is wrapped
+// (with the periodic image's shift); false when that side is not periodic.
+static bool wrap_axis(int& v, int n, bool periodic, double length, double& shift) {
+  shift = 0.0;
+  if (v >= 0 && v < n) return true;
+  if (v < 0) { v += n; shift = -length; } else { v -= n; shift = length; }
+  return periodic;
+}
+
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
-  shx = 0.0;
-  shy = 0.0;
-  if (cx < 0 || cx >= ncx) {
-    if (!periodic_x) return false;
-    if (cx < 0) { cx += ncx; shx = -lx; } else { cx -= ncx; shx = lx; }
-  }
-  if (cy < 0 || cy >= ncy) {
-    if (!periodic_y) return false;
-    if (cy < 0) { cy += ncy; shy = -ly; } else { cy -= ncy; shy = ly; }
-  }
+  if (!wrap_axis(cx, ncx, periodic_x, lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy)) return false;
   cell = pack_cell(cx, cy);
   return true;
 }
@@ -248,16 +248,8 @@ void Engine::Impl::block_of(int cell, Block& b) const {
   const int cx = cell_x(cell), cy = cell_y(cell);
   for (int d = 0; d < 3; ++d) {
     int x = cx + d - 1, y = cy + d - 1;
-    sx[d] = sy[d] = 0.0;
-    okx[d] = oky[d] = true;
-    if (x < 0 || x >= ncx) {
-      okx[d] = periodic_x;
-      if (x < 0) { x += ncx; sx[d] = -lx; } else { x -= ncx; sx[d] = lx; }
-    }
-    if (y < 0 || y >= ncy) {
-      oky[d] = periodic_y;
-      if (y < 0) { y += ncy; sy[d] = -ly; } else { y -= ncy; sy[d] = ly; }
-    }
+    okx[d] = wrap_axis(x, ncx, periodic_x, lx, sx[d]);
+    oky[d] = wrap_axis(y, ncy, periodic_y, ly, sy[d]);
     col[d] = head_col(x);
     row[d] = head_row(y);
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "engine_support.hpp"
 #include "scene/errors.hpp"
@@ -98,6 +99,19 @@ TEST(EngineContact, OverlappingParticlesAreAClearError) {
     EXPECT_STREQ(err.what(),
                  "granular engine: particle at (10.5, 10) overlaps another particle or a wall, or "
                  "lies outside the box");
+  }
+}
+
+TEST(EngineContact, DomainBeyondTheCellLimitIsAClearError) {
+  // Cells are named by 16-bit columns and 15-bit rows.
+  EngineConfig c = test::open_space(10.0);
+  c.xmax = 40000.0;
+  c.left = c.right = c.bottom = c.top = Face::closed;
+  try {
+    Engine e(c);
+    FAIL() << "a domain 40000 diameters long was accepted";
+  } catch (const scene::InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("40000 cells"), std::string::npos) << err.what();
   }
 }
 

@@ -115,8 +115,9 @@ void Engine::Impl::init(EngineConfig c) {
   const double ncells = static_cast<double>(ncx) * static_cast<double>(ncy);
   if (ncells > 2.0e9) bad("too many cells");
   if (ncx > kMaxCellsPerSide || ncy > kMaxCellsPerSide)
-    bad("more than " + std::to_string(kMaxCellsPerSide) +
-        " cells along a side of the domain: set min_cell larger");
+    bad("the domain is " + std::to_string(std::max(ncx, ncy)) +
+        " cells (largest disk diameters) along a side; at most " + std::to_string(kMaxCellsPerSide) +
+        " are supported: use larger disks or a smaller domain");
   cw = lx / ncx;
   ch = ly / ncy;
   tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;

@@ -60,16 +60,16 @@ double cpu_seconds() {
 // system's cache misses see on this host right now (part L3, part DRAM).
 class LatencyProbe {
  public:
-  LatencyProbe() : lines_(kBytes / kLine) {
+  LatencyProbe() {
     mem_ = static_cast<std::uint64_t*>(std::aligned_alloc(std::size_t{2} << 20, kBytes));
     if (!mem_) return;
     madvise(mem_, kBytes, MADV_HUGEPAGE);  // as the engine's arrays
-    std::vector<std::uint32_t> order(lines_);
+    std::vector<std::uint32_t> order(kLines);
     std::iota(order.begin(), order.end(), 0u);
     std::mt19937_64 rng(7);
-    for (std::size_t k = lines_ - 1; k > 0; --k) std::swap(order[k], order[rng() % k]);
-    for (std::size_t k = 0; k < lines_; ++k) mem_[static_cast<std::size_t>(order[k]) * kStride] =
-        static_cast<std::uint64_t>(order[(k + 1) % lines_]) * kStride;
+    for (std::size_t k = kLines - 1; k > 0; --k) std::swap(order[k], order[rng() % k]);
+    for (std::size_t k = 0; k < kLines; ++k) mem_[static_cast<std::size_t>(order[k]) * kStride] =
+        static_cast<std::uint64_t>(order[(k + 1) % kLines]) * kStride;
   }
   ~LatencyProbe() { std::free(mem_); }
   LatencyProbe(const LatencyProbe&) = delete;
@@ -87,9 +87,9 @@ class LatencyProbe {
  private:
   static constexpr std::size_t kBytes = std::size_t{64} << 20;
   static constexpr std::size_t kLine = 64;
+  static constexpr std::size_t kLines = kBytes / kLine;
   static constexpr std::size_t kStride = kLine / sizeof(std::uint64_t);
   static constexpr std::size_t kReads = 2000000;
-  std::size_t lines_;
   std::uint64_t* mem_ = nullptr;
 };
 

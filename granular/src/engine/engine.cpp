@@ -48,6 +48,15 @@ std::uint64_t spread_bits(std::uint32_t v) {
   return x;
 }
 
+// One axis of a neighbour lookup: the index one step outside is wrapped
+// (with the periodic image's shift); false when that side is not periodic.
+bool wrap_axis(int& v, int n, bool periodic, double length, double& shift) {
+  shift = 0.0;
+  if (v >= 0 && v < n) return true;
+  if (v < 0) { v += n; shift = -length; } else { v -= n; shift = length; }
+  return periodic;
+}
+
 }  // namespace
 
 void Engine::Impl::advance(Particle& q) const {
@@ -222,15 +231,6 @@ void Engine::Impl::predict_cell(std::int32_t i) {
   if (t3 < best) { best = t3; dir = 3; }
   si.cell_t = now + best;
   si.cell_dir = dir;
-}
-
-// One axis of a neighbour lookup: the index one step outside is wrapped
-// (with the periodic image's shift); false when that side is not periodic.
-static bool wrap_axis(int& v, int n, bool periodic, double length, double& shift) {
-  shift = 0.0;
-  if (v >= 0 && v < n) return true;
-  if (v < 0) { v += n; shift = -length; } else { v -= n; shift = length; }
-  return periodic;
 }
 
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {

@@ -202,13 +202,14 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
       if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
     }
   }
+  const std::size_t lc = linear_cell(c);
   if (!wall_start.empty())
-    for (std::int32_t k = wall_start[linear_cell(c)]; k < wall_start[linear_cell(c) + 1]; ++k) {
+    for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
       const Wall& w = cfg.walls[wall_list[k]];
       if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
     }
   if (!vertex_start.empty())
-    for (std::int32_t k = vertex_start[linear_cell(c)]; k < vertex_start[linear_cell(c) + 1]; ++k)
+    for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k)
       if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
   return false;
 }

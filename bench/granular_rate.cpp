@@ -3,7 +3,8 @@
 // the engine holds per particle.
 //
 //   granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0]
-//                 [--interleave] N[:PER_PARTICLE] [N[:PER_PARTICLE] ...]
+//                 [--look-ahead auto|records|full] [--interleave]
+//                 N[:PER_PARTICLE] [N[:PER_PARTICLE] ...]
 //
 // Each run melts a lattice start with 5 collisions per disk (not timed),
 // then times PER_PARTICLE collisions per disk. One line per N: the median
@@ -15,7 +16,9 @@
 // read over 64 MiB (a probe of how much of the shared host's L3 this
 // process gets, which moves the large-N rate from hour to hour: ~85 ns when
 // much of it is ours, ~125 ns when the neighbours have it) and prints one
-// line per round on stderr: probe, rates, ratio.
+// line per round on stderr: probe, rates, ratio. --look-ahead sets the
+// engine's prefetching (EngineConfig::look_ahead; default auto: the full
+// look-ahead from ~32 MB of particle arrays up).
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -36,6 +39,9 @@
 namespace {
 
 constexpr double kMeltPerParticle = 5.0;
+constexpr granular::LookAhead kAuto = granular::LookAhead::automatic;
+constexpr granular::LookAhead kRecords = granular::LookAhead::records;
+constexpr granular::LookAhead kFull = granular::LookAhead::full;
 
 struct Size {
   long n = 0;
@@ -112,13 +118,15 @@ double quantile(std::vector<double> v, double q) {
   return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-Run run_once(const Size& size, double nu, double min_cell, std::uint64_t seed) {
+Run run_once(const Size& size, double nu, double min_cell, granular::LookAhead look_ahead,
+             std::uint64_t seed) {
   granular::BoxSetup b;
   b.particles = size.n;
   b.width = b.height = std::sqrt(static_cast<double>(size.n) * std::numbers::pi / 4.0 / nu);
   b.packing_fraction = nu;
   b.seed = seed;
   b.min_cell = min_cell;
+  b.look_ahead = look_ahead;
   granular::Engine e = granular::make_box_engine(b);
   e.run_collisions(static_cast<std::uint64_t>(kMeltPerParticle * static_cast<double>(size.n)));
   const auto count = static_cast<std::uint64_t>(size.per_particle * static_cast<double>(size.n));
@@ -130,10 +138,26 @@ Run run_once(const Size& size, double nu, double min_cell, std::uint64_t seed) {
   return {static_cast<double>(count) / cpu, static_cast<double>(count) / wall, e.bytes_per_particle(), count};
 }
 
+bool parse_ahead(const std::string& v, granular::LookAhead& out) {
+  using granular::LookAhead;
+  const LookAhead* found = v == "auto"      ? &kAuto
+                           : v == "records" ? &kRecords
+                           : v == "full"    ? &kFull
+                                            : nullptr;
+  if (!found) {
+    std::fprintf(stderr, "granular_rate: --look-ahead takes auto, records or full, not '%s'\n",
+                 v.c_str());
+    return false;
+  }
+  out = *found;
+  return true;
+}
+
 int usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: granular_rate [--nu 0.4] [--per-particle 20] [--repeats 3] [--cell 0]\n"
-               "                     [--interleave] N[:PER_PARTICLE] ...\n"
+               "                     [--look-ahead auto|records|full] [--interleave]\n"
+               "                     N[:PER_PARTICLE] ...\n"
                "Collisions per second (CPU and wall) of elastic disks in a periodic box.\n");
   return code;
 }
@@ -144,6 +168,8 @@ int main(int argc, char** argv) {
   double nu = 0.4, per_particle = 20.0, min_cell = 0.0;
   int repeats = 3;
   bool interleave = false;
+  granular::LookAhead look_ahead = kAuto;
+  bool ahead_ok = true;
   std::vector<std::string> specs;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -153,6 +179,8 @@ int main(int argc, char** argv) {
     else if (a == "--per-particle" && has_value) per_particle = std::atof(argv[++i]);
     else if (a == "--repeats" && has_value) repeats = std::atoi(argv[++i]);
     else if (a == "--cell" && has_value) min_cell = std::atof(argv[++i]);
+    else if (a == "--look-ahead" && has_value)
+      ahead_ok = parse_ahead(argv[++i], look_ahead);
     else if (a == "--interleave") interleave = true;
     else if (!a.empty() && a[0] != '-') specs.push_back(a);
     else {
@@ -160,6 +188,7 @@ int main(int argc, char** argv) {
       return usage(2);
     }
   }
+  if (!ahead_ok) return 2;
   if (specs.empty()) specs = {"10000", "32000", "1000000"};
   std::vector<Size> sizes;
   for (const std::string& spec : specs) {
@@ -194,7 +223,8 @@ int main(int argc, char** argv) {
       probe.push_back(LatencyProbe().ns());  // freed before the runs: not in their peak RSS
       std::fprintf(stderr, "round %d/%d: probe %.0f ns, coll/s(cpu)", r + 1, repeats, probe.back());
       for (std::size_t k = 0; k < sizes.size(); ++k) {
-        runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
+        runs[k].push_back(
+            run_once(sizes[k], nu, min_cell, look_ahead, static_cast<std::uint64_t>(r + 1)));
         std::fprintf(stderr, " %.0f", runs[k].back().cpu_rate);
       }
       std::fprintf(stderr, ", last/first %.3f\n", runs.back().back().cpu_rate / runs.front().back().cpu_rate);
@@ -203,7 +233,8 @@ int main(int argc, char** argv) {
   } else {
     for (std::size_t k = 0; k < sizes.size(); ++k) {
       for (int r = 0; r < repeats; ++r)
-        runs[k].push_back(run_once(sizes[k], nu, min_cell, static_cast<std::uint64_t>(r + 1)));
+        runs[k].push_back(
+            run_once(sizes[k], nu, min_cell, look_ahead, static_cast<std::uint64_t>(r + 1)));
       report(k);
     }
   }

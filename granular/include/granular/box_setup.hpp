@@ -16,6 +16,7 @@ struct BoxSetup {
   Vec2 gravity{0, 0};
   std::uint64_t seed = 1;
   double min_cell = 0.0;  // EngineConfig::min_cell (0: one diameter)
+  LookAhead look_ahead = LookAhead::automatic;  // EngineConfig::look_ahead
 };
 
 // Validates the scene's box and granular sections (InputError naming the

@@ -63,6 +63,14 @@ enum class Face : std::uint8_t {
   open,      // the disk leaves the system (counted in Stats::removed)
 };
 
+// How far ahead the event loop asks for the memory of coming events. A speed
+// hint only: trajectories are the same bit for bit whatever it is.
+enum class LookAhead : std::uint8_t {
+  automatic,  // `full` once the particle arrays outgrow the caches (~32 MB)
+  records,    // the coming events' own records only
+  full,       // also their partners, cell heads and neighbours
+};
+
 struct EngineConfig {
   double xmin = 0, xmax = 10, ymin = 0, ymax = 10;
   Face left = Face::periodic, right = Face::periodic;
@@ -79,6 +87,8 @@ struct EngineConfig {
   // Smallest cell side; 0: the largest diameter. Cells are never smaller
   // than the largest diameter.
   double min_cell = 0.0;
+  // Not saved by checkpoints (it changes no result).
+  LookAhead look_ahead = LookAhead::automatic;
 };
 
 // Hot per-disk state, exactly one cache line: everything a neighbour scan

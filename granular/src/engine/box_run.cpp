@@ -80,6 +80,7 @@ Engine make_box_engine(const BoxSetup& b) {
   c.gravity = b.gravity;
   c.tc = b.tc;
   c.min_cell = b.min_cell;
+  c.look_ahead = b.look_ahead;
   if (!b.periodic) {
     // Counter-clockwise: the inside is on the left of travel.
     const Vec2 p0{0, 0}, p1{b.width, 0}, p2{b.width, b.height}, p3{0, b.height};

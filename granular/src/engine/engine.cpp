@@ -4,6 +4,7 @@
 
 #include "contact_time.hpp"
 #include "engine_impl.hpp"
+#include "prefetch.hpp"
 #include "scene/cli.hpp"
 
 namespace granular {
@@ -23,12 +24,19 @@ constexpr double kSegmentEndSlack = 1e-9;
 // Interrupt polling period (events).
 constexpr std::uint64_t kPollMask = 1023;
 // Calendar look-ahead of the four prefetch stages, in calendar entries
-// (stale ones included): each stage far enough behind the previous one that
-// its loads (~0.1 us) have arrived, the last just ahead of processing.
-constexpr std::size_t kPrefetchRecords = 16;
-constexpr std::size_t kPrefetchPartner = 8;
-constexpr std::size_t kPrefetchNeighbours = 4;
-constexpr std::size_t kPrefetchMore = 2;
+// (stale ones included): each stage one or two events (~0.3 us each at
+// N = 10^6) behind the previous one, so that the loads it builds on
+// (~0.15 us from memory) have arrived. Distances from 4/2/1/1 to 24/12/6/3
+// measure alike; these were best by a hair.
+constexpr std::size_t kPrefetchRecords = 8;
+constexpr std::size_t kPrefetchPartner = 4;
+constexpr std::size_t kPrefetchNeighbours = 2;
+constexpr std::size_t kPrefetchMore = 1;
+// Systems whose particle arrays outgrow this many bytes get the full
+// look-ahead (stages two to four); smaller ones live in cache, where those
+// stages cost more work than the misses they hide (measured crossover on
+// the benchmark host: ~2e5 disks, 24 MB; docs/bench_granular_engine.md).
+constexpr double kFullLookAheadBytes = 32.0 * (1 << 20);
 // Pending event times sampled to estimate the event rate of a new calendar.
 constexpr std::size_t kRateSample = 4096;
 // Slots are renumbered in Morton (Z) order of their cells every this many
@@ -99,88 +107,104 @@ void Engine::Impl::schedule(std::int32_t i) {
 }
 
 // The event loop reads the calendar a few entries ahead and asks for the
-// memory those events will touch, in four stages, each using what the
-// previous stage brought in (a hint only: a stale entry costs nothing).
+// memory those events will touch, in stages, each using what the previous
+// stage brought in (a hint only: a stale entry costs nothing, and no result
+// depends on it). The work is branch-free where the branch would follow the
+// event kind, a coin toss the predictor would lose.
 void Engine::Impl::prefetch_ahead() {
   using Entry = detail::Calendar::Entry;
   cal.each_ahead(0, kPrefetchRecords, [this](const Entry& e) { prefetch_records(e.slot); });
-  cal.each_ahead(1, kPrefetchPartner, [this](const Entry& e) {
-    if (live(e)) prefetch_partner(e.slot);
-  });
-  cal.each_ahead(2, kPrefetchNeighbours, [this](const Entry& e) {
-    if (live(e)) prefetch_neighbours(e.slot);
-  });
-  cal.each_ahead(3, kPrefetchMore, [this](const Entry& e) {
-    if (live(e)) prefetch_more(e.slot);
-  });
+  if (!full_look_ahead) return;
+  cal.each_ahead(1, kPrefetchPartner, [this](const Entry& e) { prefetch_stage2(e.slot); });
+  cal.each_ahead(2, kPrefetchNeighbours, [this](const Entry& e) { prefetch_stage3(e.slot); });
+  cal.each_ahead(3, kPrefetchMore, [this](const Entry& e) { prefetch_stage4(e.slot); });
 }
 
 // Stage one: the slot's records.
 void Engine::Impl::prefetch_records(std::size_t i) const {
-  __builtin_prefetch(&p[i]);
-  __builtin_prefetch(&s[i]);
+  detail::prefetch(&p[i]);
+  detail::prefetch(&s[i]);
 }
 
-void Engine::Impl::prefetch_heads(int cell, int dcx, int dcy) const {
-  int c = 0;
-  double shx = 0.0, shy = 0.0;
-  if (neighbour_cell(cell_x(cell) + dcx, cell_y(cell) + dcy, c, shx, shy)) __builtin_prefetch(&head[head_index(c)]);
-}
-
-// Stage two: the partner's records and the cell heads the event will scan
-// (the 3x3 block for a collision, the newly adjacent row for a crossing).
-void Engine::Impl::prefetch_partner(std::size_t i) const {
+// The slot whose neighbourhood an event of slot i scans besides its own:
+// the partner of a disk collision, i itself otherwise.
+std::size_t Engine::Impl::scan_partner(std::size_t i) const {
   const detail::Slot& si = s[i];
-  const int c = p[i].cell;
-  if (si.crossing_first()) {
-    const int dx = si.cell_dir == 0 ? -2 : si.cell_dir == 1 ? 2 : 0;
-    const int dy = si.cell_dir == 2 ? -2 : si.cell_dir == 3 ? 2 : 0;
-    for (int k = -1; k <= 1; ++k) prefetch_heads(c, dx != 0 ? dx : k, dy != 0 ? dy : k);
+  const bool disk = !si.crossing_first() && si.type == EventType::disk;
+  return disk ? static_cast<std::uint32_t>(si.partner) : i;
+}
+
+// The cell whose 3 x 3 block the event of slot i scans: its own, or for a
+// cell crossing the one it moves to (a superset of the row it scans).
+int Engine::Impl::event_cell(std::size_t i) const {
+  const detail::Slot& si = s[i];
+  const int d = si.crossing_first() ? si.cell_dir : 4;
+  const int cx = std::clamp(cell_x(p[i].cell) + (d == 1) - (d == 0), 0, ncx - 1);
+  const int cy = std::clamp(cell_y(p[i].cell) + (d == 3) - (d == 2), 0, ncy - 1);
+  return pack_cell(cx, cy);
+}
+
+// Heads of the four corner cells of the 3 x 3 block around `cell`, clamped
+// at the domain's edges: the 4 x 4 tiles of heads they fall in hold the
+// whole block (at a periodic edge the wrapped side is left to the demand
+// load).
+void Engine::Impl::prefetch_corner_heads(int cell) const {
+  const int cx = cell_x(cell), cy = cell_y(cell);
+  const std::uint32_t c0 = head_col(std::max(cx - 1, 0)), c1 = head_col(std::min(cx + 1, ncx - 1));
+  const std::uint32_t r0 = head_row(std::max(cy - 1, 0)), r1 = head_row(std::min(cy + 1, ncy - 1));
+  detail::prefetch(&head[r0 + c0]);
+  detail::prefetch(&head[r0 + c1]);
+  detail::prefetch(&head[r1 + c0]);
+  detail::prefetch(&head[r1 + c1]);
+}
+
+// The first disk of each cell of the 3 x 3 block around `cell`; an empty
+// cell asks for slot `self` (in cache) instead of taking a branch.
+void Engine::Impl::prefetch_block_disks(int cell, std::size_t self) const {
+  const auto n = static_cast<std::uint32_t>(p.size());
+  const auto ask = [&](std::int32_t k) {
+    detail::prefetch(&p[static_cast<std::uint32_t>(k) < n ? static_cast<std::size_t>(k) : self]);
+  };
+  const int cx = cell_x(cell), cy = cell_y(cell);
+  if (cx > 0 && cy > 0 && cx + 1 < ncx && cy + 1 < ncy) {
+    // Interior (nearly always): the nine head indices without block_of()'s
+    // wrapping.
+    const std::uint32_t c0 = head_col(cx - 1), c1 = head_col(cx), c2 = head_col(cx + 1);
+    for (int dy = -1; dy <= 1; ++dy) {
+      const std::uint32_t r = head_row(cy + dy);
+      ask(head[r + c0]);
+      ask(head[r + c1]);
+      ask(head[r + c2]);
+    }
     return;
   }
-  if (si.type == EventType::disk) {
-    __builtin_prefetch(&p[static_cast<std::size_t>(si.partner)]);
-    __builtin_prefetch(&s[static_cast<std::size_t>(si.partner)]);
-  }
-  prefetch_block_heads(c);
-}
-
-// The 3x3 block of cell heads around `cell` (2.25 cache lines on average).
-void Engine::Impl::prefetch_block_heads(int cell) const {
   Block b;
   block_of(cell, b);
-  for (int m = 0; m < b.n; ++m) __builtin_prefetch(&head[b.head[m]]);
+  for (int m = 0; m < b.n; ++m) ask(head[b.head[m]]);
 }
 
-// First disks of the 3x3 cells around `cell` (their heads were requested
-// a stage earlier); with `second`, the disks after those (one stage later).
-void Engine::Impl::prefetch_cell_disks(int cell, bool second) const {
-  Block b;
-  block_of(cell, b);
-  for (int m = 0; m < b.n; ++m) {
-    std::int32_t k = head[b.head[m]];
-    if (second && k >= 0) k = p[static_cast<std::size_t>(k)].next;
-    if (k >= 0) __builtin_prefetch(&p[static_cast<std::size_t>(k)]);
-  }
+// Stage two: the partner's records (requested and not used for any other
+// event: a miss in cache) and the heads of the block the event scans.
+void Engine::Impl::prefetch_stage2(std::size_t i) const {
+  const std::size_t j = scan_partner(i);
+  detail::prefetch(&p[j]);
+  detail::prefetch(&s[j]);
+  prefetch_corner_heads(event_cell(i));
 }
 
-// Stage three: the partner's 3x3 cell heads and the first disk of each of
-// the slot's own neighbour cells.
-void Engine::Impl::prefetch_neighbours(std::size_t i) const {
-  const detail::Slot& si = s[i];
-  if (si.crossing_first()) return;
-  if (si.type == EventType::disk) {
-    prefetch_block_heads(p[static_cast<std::size_t>(si.partner)].cell);
-  }
-  prefetch_cell_disks(p[i].cell, false);
+// Stage three: the partner's block heads and the first disks of the
+// event's block.
+void Engine::Impl::prefetch_stage3(std::size_t i) const {
+  prefetch_corner_heads(p[scan_partner(i)].cell);
+  prefetch_block_disks(event_cell(i), i);
 }
 
-// Stage four: the partner's first neighbour disks and the slot's second ones.
-void Engine::Impl::prefetch_more(std::size_t i) const {
-  const detail::Slot& si = s[i];
-  if (si.crossing_first()) return;
-  if (si.type == EventType::disk) prefetch_cell_disks(p[static_cast<std::size_t>(si.partner)].cell, false);
-  prefetch_cell_disks(p[i].cell, true);
+// Stage four: the first disks of the partner's block. (Second disks of a
+// cell, about one per block, were asked for too in a trial: the nine
+// dependent reads cost more than that miss.)
+void Engine::Impl::prefetch_stage4(std::size_t i) const {
+  const std::size_t j = scan_partner(i);
+  if (j != i) prefetch_block_disks(p[j].cell, i);
 }
 
 // Empties the calendar and schedules every live slot again, with the bucket
@@ -367,7 +391,7 @@ void Engine::Impl::predict(std::int32_t i) {
   std::int32_t first[9];
   for (int k = 0; k < b.n; ++k) {
     first[k] = head[b.head[k]];
-    if (first[k] >= 0) __builtin_prefetch(&p[first[k]]);
+    if (first[k] >= 0) detail::prefetch(&p[first[k]]);
   }
   for (int k = 0; k < b.n; ++k) scan_list(i, first[k], b.shx[k], b.shy[k], q.x, q.y, q.vx, q.vy, rad);
   scan_walls_for(i, p[i].cell, q.x, q.y, q.vx, q.vy);
@@ -563,6 +587,10 @@ bool Engine::Impl::reorder() {
   std::size_t alive = 0;
   for (const Particle& q : p) alive += q.alive ? 1 : 0;
   next_reorder = st.collisions + static_cast<std::uint64_t>(kReorderCollisionsPerDisk * static_cast<double>(alive));
+  const double footprint = static_cast<double>(n * (sizeof(Particle) + sizeof(detail::Slot)) +
+                                               head.size() * sizeof(std::int32_t));
+  full_look_ahead = cfg.look_ahead == LookAhead::full ||
+                    (cfg.look_ahead == LookAhead::automatic && footprint > kFullLookAheadBytes);
   if (alive < kReorderMinDisks) return false;
   std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
   for (std::size_t i = 0; i < n; ++i) {

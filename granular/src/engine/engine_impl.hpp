@@ -102,6 +102,7 @@ struct Engine::Impl {
   double energy_since = 0.0;  // time energy_integral is accumulated to
   std::uint64_t events = 0;
   std::uint64_t next_reorder = 0;  // collision count of the next spatial sort
+  bool full_look_ahead = false;    // prefetch stages two to four (set by reorder())
 
   bool reorder();  // true when the slots were renumbered (and the calendar rebuilt)
   void init(EngineConfig c);
@@ -125,12 +126,13 @@ struct Engine::Impl {
   bool live(const detail::Calendar::Entry& e) const { return s[e.slot].qver == e.ver; }
   void prefetch_ahead();
   void prefetch_records(std::size_t i) const;
-  void prefetch_heads(int cell, int dcx, int dcy) const;
-  void prefetch_block_heads(int cell) const;
-  void prefetch_partner(std::size_t i) const;
-  void prefetch_neighbours(std::size_t i) const;
-  void prefetch_cell_disks(int cell, bool second) const;
-  void prefetch_more(std::size_t i) const;
+  std::size_t scan_partner(std::size_t i) const;
+  int event_cell(std::size_t i) const;
+  void prefetch_corner_heads(int cell) const;
+  void prefetch_block_disks(int cell, std::size_t self) const;
+  void prefetch_stage2(std::size_t i) const;
+  void prefetch_stage3(std::size_t i) const;
+  void prefetch_stage4(std::size_t i) const;
   void rebuild_calendar();
   void cross_cell(std::int32_t i);
   void collide_disks(std::int32_t i, std::int32_t j);

@@ -122,6 +122,7 @@ Engine Engine::load(std::istream& in) {
   get(in, m.events);
   get(in, m.next_reorder);
   if (m.started) m.rebuild_calendar();
+  m.choose_look_ahead();
   return e;
 }
 

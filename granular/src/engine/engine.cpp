@@ -183,8 +183,8 @@ void Engine::Impl::prefetch_block_disks(int cell, std::size_t self) const {
   for (int m = 0; m < b.n; ++m) ask(head[b.head[m]]);
 }
 
-// Stage two: the partner's records (requested and not used for any other
-// event: a miss in cache) and the heads of the block the event scans.
+// Stage two: the partner's records (for an event without one, the slot's
+// own again: in cache by now) and the heads of the block the event scans.
 void Engine::Impl::prefetch_stage2(std::size_t i) const {
   const std::size_t j = scan_partner(i);
   detail::prefetch(&p[j]);
@@ -582,15 +582,19 @@ void Engine::Impl::remove(std::int32_t i) {
   ++st.removed;
 }
 
+void Engine::Impl::choose_look_ahead() {
+  const double footprint = static_cast<double>(
+      p.size() * (sizeof(Particle) + sizeof(detail::Slot)) + head.size() * sizeof(std::int32_t));
+  full_look_ahead = cfg.look_ahead == LookAhead::full ||
+                    (cfg.look_ahead == LookAhead::automatic && footprint > kFullLookAheadBytes);
+}
+
 bool Engine::Impl::reorder() {
   const std::size_t n = p.size();
   std::size_t alive = 0;
   for (const Particle& q : p) alive += q.alive ? 1 : 0;
   next_reorder = st.collisions + static_cast<std::uint64_t>(kReorderCollisionsPerDisk * static_cast<double>(alive));
-  const double footprint = static_cast<double>(n * (sizeof(Particle) + sizeof(detail::Slot)) +
-                                               head.size() * sizeof(std::int32_t));
-  full_look_ahead = cfg.look_ahead == LookAhead::full ||
-                    (cfg.look_ahead == LookAhead::automatic && footprint > kFullLookAheadBytes);
+  choose_look_ahead();
   if (alive < kReorderMinDisks) return false;
   std::vector<std::pair<std::uint64_t, std::int32_t>> order(n);
   for (std::size_t i = 0; i < n; ++i) {

@@ -102,9 +102,10 @@ struct Engine::Impl {
   double energy_since = 0.0;  // time energy_integral is accumulated to
   std::uint64_t events = 0;
   std::uint64_t next_reorder = 0;  // collision count of the next spatial sort
-  bool full_look_ahead = false;    // prefetch stages two to four (set by reorder())
+  bool full_look_ahead = false;    // prefetch stages two to four (choose_look_ahead())
 
   bool reorder();  // true when the slots were renumbered (and the calendar rebuilt)
+  void choose_look_ahead();  // from cfg.look_ahead and the arrays' size (by reorder())
   void init(EngineConfig c);
   // Geometry helpers.
   int cell_of(double x, double y) const;

@@ -105,7 +105,7 @@ struct Engine::Impl {
   bool full_look_ahead = false;    // prefetch stages two to four (choose_look_ahead())
 
   bool reorder();  // true when the slots were renumbered (and the calendar rebuilt)
-  void choose_look_ahead();  // from cfg.look_ahead and the arrays' size (by reorder())
+  void choose_look_ahead();  // from cfg.look_ahead and the arrays' size (reorder(), load())
   void init(EngineConfig c);
   // Geometry helpers.
   int cell_of(double x, double y) const;

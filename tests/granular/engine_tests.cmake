@@ -11,3 +11,13 @@ target_include_directories(granular_engine_tests PRIVATE ${PROJECT_SOURCE_DIR}/g
 add_stage_test(NAME granular_engine_slow_tests PREFIX granular
   SOURCES engine_support.cpp engine_slow_test.cpp
   LIBS granular_core LABELS slow TIMEOUT 1200)
+# The look-ahead prefetch stages are in the optimised binary (an x86-64
+# disassembly check; Debug builds inline nothing and are not checked).
+find_program(OBJDUMP_EXE objdump)
+if(OBJDUMP_EXE AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64"
+   AND CMAKE_BUILD_TYPE MATCHES "^(Release|RelWithDebInfo)$")
+  add_test(NAME granular.Build.LookAheadStagesAreCompiledIn
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/look_ahead_in_binary.sh ${OBJDUMP_EXE}
+            $<TARGET_FILE:granular_core>)
+  set_tests_properties(granular.Build.LookAheadStagesAreCompiledIn PROPERTIES LABELS fast TIMEOUT 60)
+endif()

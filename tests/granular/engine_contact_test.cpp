@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "engine_support.hpp"
@@ -113,6 +114,16 @@ TEST(EngineContact, DomainBeyondTheCellLimitIsAClearError) {
   } catch (const scene::InputError& err) {
     EXPECT_NE(std::string(err.what()).find("40000 cells"), std::string::npos) << err.what();
   }
+  // Far beyond the int range: refused by the same check, before any cast.
+  c.xmax = 1e12;
+  try {
+    Engine e(c);
+    FAIL() << "a domain 1e12 diameters long was accepted";
+  } catch (const scene::InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("1000000000000 cells"), std::string::npos) << err.what();
+  }
+  c.xmax = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(Engine{c}, scene::InputError);
 }
 
 TEST(EngineContact, SmallPeriodicBoxIsRejected) {

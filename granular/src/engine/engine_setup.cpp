@@ -2,6 +2,7 @@
 // vertex registration, adding disks.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -69,6 +70,8 @@ double segment_rect_distance(Vec2 a, Vec2 b, double x0, double y0, double x1, do
 void Engine::Impl::init(EngineConfig c) {
   cfg = std::move(c);
   if (!(cfg.xmax > cfg.xmin) || !(cfg.ymax > cfg.ymin)) bad("empty simulation rectangle");
+  if (!std::isfinite(cfg.xmax - cfg.xmin) || !std::isfinite(cfg.ymax - cfg.ymin))
+    bad("the simulation rectangle must be finite");
   if (cfg.species.empty()) bad("no species");
   ns = cfg.species.size();
   if (ns > 65535) bad("too many species");
@@ -108,16 +111,19 @@ void Engine::Impl::init(EngineConfig c) {
   lx = cfg.xmax - cfg.xmin;
   ly = cfg.ymax - cfg.ymin;
   const double cell = std::max(max_diameter, cfg.min_cell);
-  ncx = std::max(1, static_cast<int>(std::floor(lx / cell)));
-  ncy = std::max(1, static_cast<int>(std::floor(ly / cell)));
+  // Checked as doubles, before the counts are cast to int.
+  const double cells_x = std::floor(lx / cell), cells_y = std::floor(ly / cell);
+  if (std::max(cells_x, cells_y) > kMaxCellsPerSide) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.0f", std::max(cells_x, cells_y));
+    bad(std::string("the domain is ") + count +
+        " cells (largest disk diameters) along a side; at most " +
+        std::to_string(kMaxCellsPerSide) + " are supported: use larger disks or a smaller domain");
+  }
+  ncx = std::max(1, static_cast<int>(cells_x));
+  ncy = std::max(1, static_cast<int>(cells_y));
   if ((periodic_x && ncx < 3) || (periodic_y && ncy < 3))
     bad("a periodic side must be at least 3 largest diameters long");
-  const double ncells = static_cast<double>(ncx) * static_cast<double>(ncy);
-  if (ncells > 2.0e9) bad("too many cells");
-  if (ncx > kMaxCellsPerSide || ncy > kMaxCellsPerSide)
-    bad("the domain is " + std::to_string(std::max(ncx, ncy)) +
-        " cells (largest disk diameters) along a side; at most " + std::to_string(kMaxCellsPerSide) +
-        " are supported: use larger disks or a smaller domain");
   cw = lx / ncx;
   ch = ly / ncy;
   tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;

@@ -1,5 +1,7 @@
 #include "pipeline/compare.hpp"
 
+#include "pipeline/equal_error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,23 +10,13 @@ namespace pipeline {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Errors below this are treated as this (log-log interpolation needs > 0).
-constexpr double kErrorFloor = 1e-6;
-// CFD wall time of the uniform family (sorted by time) at error `e`:
-// log(time) interpolated linearly in log(error) between the bracketing runs;
-// a coarser uniform run already as accurate gives its own time; NaN when no
-// uniform run reaches `e`.
+// CFD wall time of the uniform family at error `e`: the cheapest run
+// already that accurate, or the log-log crossing between two runs adjacent
+// in time (equal_error.hpp); NaN when no uniform run reaches `e`.
 double uniform_time_at(const std::vector<const GridRun*>& u, double e) {
-  for (std::size_t k = 0; k + 1 < u.size(); ++k) {
-    const double e0 = std::max(u[k]->error, kErrorFloor), e1 = std::max(u[k + 1]->error, kErrorFloor);
-    if ((e0 - e) * (e1 - e) <= 0 && e0 != e1) {
-      const double f = (std::log(e) - std::log(e0)) / (std::log(e1) - std::log(e0));
-      return std::exp(std::log(u[k]->cfd_wall_seconds) +
-                      f * (std::log(u[k + 1]->cfd_wall_seconds) - std::log(u[k]->cfd_wall_seconds)));
-    }
-  }
-  if (!u.empty() && std::max(u.front()->error, kErrorFloor) <= e) return u.front()->cfd_wall_seconds;
-  return kNaN;
+  std::vector<CostError> runs;
+  for (const GridRun* r : u) runs.push_back({r->cfd_wall_seconds, r->error, 0.0});
+  return cheapest_cost_at(runs, e);
 }
 
 }  // namespace
@@ -34,7 +26,19 @@ nlohmann::json GridRun::to_json() const {
           {"cfd_wall_seconds", cfd_wall_seconds}, {"steps", steps}, {"steady_state_reached", steady},
           {"shock", shock}, {"value", value}, {"value_ci", value_ci}, {"error", error},
           {"wall_pressure_ratio", wall_pressure_ratio}, {"pressure_error", pressure_error},
-          {"speedup_cfd_at_equal_error", speedup_cfd}};
+          {"speedup_cfd_at_equal_error", speedup_cfd}, {"cpu_seconds", cfd_cpu_seconds},
+          {"mesh_cpu_seconds", mesh_cpu_seconds}, {"wall_seconds", cfd_wall_seconds},
+          {"flow_throughs", flow_throughs}, {"cpu_us_per_cell_step", cpu_us_per_cell_step()},
+          {"primary_error", primary_error}, {"primary_error_ci", primary_error_ci}, {"l1_density", l1_density},
+          {"l1_density_ci", l1_density_ci}, {"l1_pressure", l1_pressure},
+          {"stagnation_pressure_ratio", stagnation_pressure_ratio},
+          {"stagnation_pressure_error", stagnation_pressure_error}, {"drag_coefficient", drag_coefficient},
+          {"note", note}};
+}
+
+double GridRun::cpu_us_per_cell_step() const {
+  return cells > 0 && steps > 0 ? 1e6 * cfd_cpu_seconds / (static_cast<double>(cells) * static_cast<double>(steps))
+                                : std::numeric_limits<double>::quiet_NaN();
 }
 
 void score(GridRun& r, const Reference& ref) {
@@ -63,7 +67,7 @@ Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
     if (std::isfinite(r.error) && r.cfd_wall_seconds > 0) u.push_back(&r);
   if (c.clustered_pick < 0 || u.empty()) return c;
   const GridRun& cl = c.clustered[c.clustered_pick];
-  const double e = std::max(cl.error, kErrorFloor);
+  const double e = cl.error;
   // Uniform match: the coarsest uniform at least as accurate.
   for (int k = 0; k < static_cast<int>(c.uniform.size()); ++k)
     if (std::isfinite(c.uniform[k].error) && c.uniform[k].error <= cl.error) { c.uniform_pick = k; c.uniform_matches = true; break; }
@@ -73,7 +77,7 @@ Comparison compare(std::vector<GridRun> clustered, std::vector<GridRun> uniform,
   std::sort(u.begin(), u.end(), [](const GridRun* a, const GridRun* b) { return a->cfd_wall_seconds < b->cfd_wall_seconds; });
   const double t_at = uniform_time_at(u, e);
   for (auto& r : c.clustered)
-    r.speedup_cfd = std::isfinite(r.error) ? uniform_time_at(u, std::max(r.error, kErrorFloor)) / r.cfd_wall_seconds : kNaN;
+    r.speedup_cfd = std::isfinite(r.error) ? uniform_time_at(u, r.error) / r.cfd_wall_seconds : kNaN;
   const double clustered_total = cl.cfd_wall_seconds + cl.mesh_seconds + granular_seconds;
   if (std::isfinite(t_at)) {
     c.speedup_cfd = t_at / cl.cfd_wall_seconds;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/cli.hpp"
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
     run->add_option("--out", out_dir, "output directory")->required();
     run->add_option("--np", np, "processes for granular replicas and OpenFOAM")->check(CLI::PositiveNumber);
     run->add_option("--force", force, "rerun a stage: granular, shockfit, meshgen, cfd, all")
-        ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "report", "all"}));
+        ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "all"}));
     run->add_option("--calibration", calibration, "restitution table (default: pipeline/calibration.yaml)");
     run->add_flag("--dry-run", dry_run, "validate the scene, print it resolved, and stop");
 
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
       o.calibration_path = calibration;
       const auto summary = pipeline::run_pipeline(s, o);
       std::cout << summary.dump(2) << "\n";
+      std::cout << pipeline::verdict_line(summary) << "\n";
       return 0;
     }
     if (sweep->parsed()) {

@@ -25,8 +25,10 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 nlohmann::json run_object(const GridRun& r, const Reference& ref) {
   nlohmann::json j = {{"cells", r.cells}, {"level", r.level}, {"cfd_wall_seconds", r.cfd_wall_seconds},
+                      {"cpu_seconds", r.cfd_cpu_seconds}, {"mesh_cpu_seconds", r.mesh_cpu_seconds},
                       {"mesh_seconds", r.mesh_seconds}, {"steps", r.steps}, {"shock", r.shock},
-                      {"steady_state_reached", r.steady}, {"error", r.error}};
+                      {"steady_state_reached", r.steady}, {"error", r.error}, {"primary_error", r.primary_error},
+                      {"primary_error_ci", r.primary_error_ci}};
   if (ref.quantity == "shock_angle_deg") {
     j["shock_angle_deg"] = r.value;
     j["shock_angle_ci_deg"] = r.value_ci;
@@ -53,12 +55,32 @@ std::string fmt(double v, int prec = 3) {
   return os.str();
 }
 
-std::vector<scene::Vec2> accepted_points(const std::string& shock_csv) {
+std::string interval_text(const Interval& i) {
+  if (!std::isfinite(i.value)) return "n/a";
+  return fmt(i.value, 3) + "x (95%: " + fmt(i.ci_low, 3) + "-" + (std::isinf(i.ci_high) ? "inf" : fmt(i.ci_high, 3)) +
+         ")";
+}
+
+std::string grid_name(const GridRun& r) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s_h%g", r.family.c_str(), r.level);
+  return buf;
+}
+
+// Figures that could not be drawn are listed in the report, never dropped silently.
+struct Warnings {
+  std::vector<std::string> lines;
+  void add(const std::string& what, const std::exception& e) { lines.push_back(what + ": " + e.what()); }
+};
+
+std::vector<scene::Vec2> accepted_points(const std::string& shock_csv, Warnings& w) {
   std::vector<scene::Vec2> pts;
+  if (!fs::exists(shock_csv)) return pts;
   try {
     for (const auto& st : shockfit::read_shock_csv(shock_csv))
       if (st.accepted) pts.push_back(st.shock);
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    w.add("could not read " + shock_csv, e);
   }
   return pts;
 }
@@ -68,6 +90,225 @@ void copy_if_exists(const std::string& from, const std::string& to) {
   if (fs::exists(from)) fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
 }
 
+// A family's fitted error-against-cost line over its cost range, with the
+// band of the residual scatter (+-2 s in log error) as dashed lines.
+void add_fit(PlotSpec& p, const LogLogFit& f, const std::vector<double>& costs, const std::string& title) {
+  if (!f.ok || costs.empty()) return;
+  double lo = costs.front(), hi = costs.front();
+  for (const double c : costs) {
+    lo = std::min(lo, c);
+    hi = std::max(hi, c);
+  }
+  constexpr int kPoints = 20;
+  constexpr double kBandSd = 2.0;
+  Series mid, up, down;
+  mid.title = title + " fit (slope " + fmt(f.b, 2) + ")";
+  up.title = title + " fit +-2 s";
+  down.title = "";
+  mid.style = "lines lw 2";
+  up.style = down.style = "lines dt 2";
+  for (int k = 0; k <= kPoints; ++k) {
+    const double x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * k / kPoints);
+    const double y = f.a + f.b * std::log(x);
+    mid.x.push_back(x);
+    mid.y.push_back(std::exp(y));
+    up.x.push_back(x);
+    up.y.push_back(std::exp(y + kBandSd * f.residual_sd));
+    down.x.push_back(x);
+    down.y.push_back(std::exp(y - kBandSd * f.residual_sd));
+  }
+  p.series.push_back(mid);
+  p.series.push_back(up);
+  p.series.push_back(down);
+}
+
+// Primary error against CPU cost: every run with its interval, each family's fit.
+void cost_figures(const ReportInputs& in, const std::string& fig) {
+  const auto& c = in.comparison;
+  const auto& v = in.verdict;
+  const std::string ylabel = v.primary.name + " (95% bars)";
+  PlotSpec cfd{"Primary error against CFD CPU time", "CFD CPU seconds to steady state", ylabel, true, true, {}, {}};
+  PlotSpec tot{"Primary error against total CPU time (predictor + meshing + CFD)", "total CPU seconds", ylabel,
+               true, true, {}, {}};
+  for (const auto* fam : {&c.uniform, &c.clustered}) {
+    const bool clustered = fam == &c.clustered;
+    const std::string title = clustered ? "clustered at the predicted shock" : "uniform";
+    Series sc, st;
+    sc.title = st.title = title;
+    std::vector<double> xc, xt;
+    for (const auto& r : *fam) {
+      if (!(r.primary_error > 0) || !(r.cfd_cpu_seconds > 0)) continue;
+      const double total = r.cfd_cpu_seconds + r.mesh_cpu_seconds + (clustered ? v.predictor_cpu : 0.0);
+      sc.x.push_back(r.cfd_cpu_seconds);
+      st.x.push_back(total);
+      for (auto* s : {&sc, &st}) {
+        s->y.push_back(r.primary_error);
+        s->yerr.push_back(std::isfinite(r.primary_error_ci) ? r.primary_error_ci : 0.0);
+      }
+      xc.push_back(r.cfd_cpu_seconds);
+      xt.push_back(total);
+    }
+    cfd.series.push_back(sc);
+    tot.series.push_back(st);
+    const FamilyFitInfo& info = clustered ? v.clustered : v.uniform;
+    add_fit(cfd, info.cfd, xc, title);
+    add_fit(tot, info.total, xt, title);
+  }
+  plot_png(cfd, fig + "/error_vs_cfd_cpu.png");
+  plot_png(tot, fig + "/error_vs_total_cpu.png");
+  PlotSpec ec{"Primary error against cells", "cells", ylabel, true, true, {}, {}};
+  for (const auto* fam : {&c.uniform, &c.clustered}) {
+    Series s;
+    s.title = fam == &c.uniform ? "uniform" : "clustered at the predicted shock";
+    for (const auto& r : *fam) {
+      if (!(r.primary_error > 0)) continue;
+      s.x.push_back(static_cast<double>(r.cells));
+      s.y.push_back(r.primary_error);
+    }
+    ec.series.push_back(s);
+  }
+  plot_png(ec, fig + "/error_vs_cells.png");
+}
+
+void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) {
+  const std::string dir = in.out_dir;
+  const auto& c = in.comparison;
+  const bool angle = in.reference.quantity == "shock_angle_deg";
+  const auto granular_pts = accepted_points(dir + "/shockfit/shock.csv", w);
+  std::vector<scene::Vec2> cfd_pts;
+  std::string cfd_name;
+  if (c.clustered_pick >= 0) {
+    cfd_name = grid_name(c.clustered[c.clustered_pick]);
+    cfd_pts = accepted_points(dir + "/cfd/" + cfd_name + "/shockfit/shock.csv", w);
+  }
+  std::vector<scene::Vec2> exact;
+  if (angle) {
+    const double b = in.reference.value * kDeg;
+    const auto d = scene::scene_domain(in.scene);
+    for (int k = 0; k <= 20; ++k) {
+      const double x = d.xmax * k / 20.0;
+      if (x * std::tan(b) <= d.ymax) exact.push_back({x, x * std::tan(b)});
+    }
+  }
+  const std::string gvti = dir + "/granular/fields.vti";
+  if (fs::exists(gvti)) {
+    try {
+      const auto lat = scene::read_vti(gvti);
+      field_png(lat, "volume_fraction", "Granular volume fraction with the fitted shock",
+                {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}},
+                fig + "/granular_volume_fraction.png");
+      field_png(lat, "u", "Granular velocity u", {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}},
+                fig + "/granular_velocity.png");
+    } catch (const std::exception& e) {
+      w.add("granular figures skipped", e);
+    }
+  }
+  if (!cfd_name.empty()) {
+    try {
+      const auto lat = scene::read_vti(dir + "/cfd/" + cfd_name + "/fields.vti");
+      field_png(lat, "mach", "Shocks over the clustered CFD Mach field: granular, CFD and exact",
+                {{"granular", granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
+                 {"CFD (clustered)", cfd_pts, "points pt 4 ps 0.8 lc rgb 'black'"},
+                 {"exact", exact, "lines lw 2 dt 2 lc rgb 'magenta'"}},
+                fig + "/shocks_compared.png");
+    } catch (const std::exception& e) {
+      w.add("shock comparison figure skipped", e);
+    }
+  }
+  for (const auto* fam : {&c.uniform, &c.clustered}) {
+    for (const auto& r : *fam) {
+      const std::string name = grid_name(r);
+      const std::string vti = dir + "/cfd/" + name + "/fields.vti";
+      if (fs::exists(vti)) {
+        try {
+          const auto lat = scene::read_vti(vti);
+          field_png(lat, "mach", "CFD Mach number, " + name,
+                    {{"CFD shock", accepted_points(dir + "/cfd/" + name + "/shockfit/shock.csv", w),
+                      "points pt 7 ps 0.6 lc rgb 'white'"}},
+                    fig + "/cfd_mach_" + name + ".png");
+        } catch (const std::exception& e) {
+          w.add("Mach figure of " + name + " skipped", e);
+        }
+      }
+      for (const char* f : {"history.png", "convergence.png"})
+        copy_if_exists(dir + "/cfd/" + name + "/" + f, fig + "/cfd_" + name + "_" + f);
+      for (const char* f : {"mesh.png", "mesh_zoom.png"})
+        copy_if_exists(dir + "/meshgen/" + name + "/" + f, fig + "/mesh_" + name + "_" + f);
+    }
+  }
+}
+
+void verdict_section(std::ostringstream& md, const ReportInputs& in) {
+  const auto& v = in.verdict;
+  md << "## Verdict\n\n";
+  md << "Primary error: **" << v.primary.name << "** against the " << v.primary.reference << " — "
+     << v.primary.why << ".\n\n";
+  if (std::isfinite(v.speedup_total.value)) {
+    md << "At the clustered family's finest error (" << fmt(v.target_error, 3)
+       << "), reading each family's log-log fit of error against CPU time:\n\n"
+       << "- CFD CPU time: uniform / clustered = **" << interval_text(v.speedup_cfd) << "** — " << v.verdict_cfd
+       << ";\n- total CPU time (predictor " << fmt(v.predictor_cpu, 3)
+       << " s, meshing and CFD): **" << interval_text(v.speedup_total) << "** — **" << v.verdict << "**.\n\n";
+    md << "\"not distinguishable\" means the 95% interval contains 1.";
+    if (!v.note.empty()) md << " Note: " << v.note << ".";
+    md << "\n\n";
+  } else {
+    md << "No verdict: " << (v.note.empty() ? "missing runs" : v.note) << " (see the table).\n\n";
+  }
+  for (const auto* f : {&v.uniform, &v.clustered})
+    for (const auto& e : f->excluded) md << "- excluded from the fit: " << e << "\n";
+  md << "\n";
+  const auto& c = in.comparison;
+  if (std::isfinite(c.speedup_cfd))
+    md << "Secondary (the shock angle or standoff, wall seconds, interpolated): " << fmt(c.speedup_cfd, 3)
+       << "x in CFD wall time.\n\n";
+  else if (std::isfinite(c.speedup_bound))
+    md << "Secondary (the shock angle or standoff, wall seconds): no uniform grid reached the clustered grid's "
+          "error; against the finest uniform grid, at least " << fmt(c.speedup_bound, 3) << "x in CFD wall time.\n\n";
+}
+
+void runs_table(std::ostringstream& md, const ReportInputs& in) {
+  const auto& c = in.comparison;
+  const bool angle = in.reference.quantity == "shock_angle_deg";
+  md << "## Runs\n\n| family | h / h_min | cells | CFD CPU s | CFD wall s | mesh CPU s | steps | us/cell-step | "
+        "steady | " << in.verdict.primary.name << " | "
+     << (angle ? "angle (deg)" : "standoff") << " | error | "
+     << (angle ? "p2/p1 (exact " + fmt(in.reference.pressure_ratio, 4) + ")" : "p0/p_inf") << " |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto* fam : {&c.uniform, &c.clustered})
+    for (const auto& r : *fam)
+      md << "| " << r.family << " | " << r.level << " | " << r.cells << " | " << fmt(r.cfd_cpu_seconds) << " | "
+         << fmt(r.cfd_wall_seconds) << " | " << fmt(r.mesh_cpu_seconds) << " | " << r.steps << " | "
+         << fmt(r.cpu_us_per_cell_step(), 2) << " | " << (r.steady ? "yes" : "**no**") << " | "
+         << fmt(r.primary_error, 3) << " ± " << fmt(r.primary_error_ci, 2) << " | " << fmt(r.value, 4) << " ± "
+         << fmt(r.value_ci, 2) << " | " << fmt(r.error) << " | "
+         << (angle ? fmt(r.wall_pressure_ratio, 4) : fmt(r.stagnation_pressure_ratio, 4)) << " |\n";
+  md << "\n";
+}
+
+// Richardson estimates from the independent reference grid (blunt bodies).
+void convergence_section(std::ostringstream& md, const nlohmann::json& g) {
+  if (!g.is_object()) return;
+  md << "## Grid convergence (independent reference grid)\n\n";
+  const auto& ref = g["reference_run"];
+  md << "Reference grid: uniform, h = " << fmt(ref.value("level", kNaN), 3) << " h_min, "
+     << ref.value("cells", 0L) << " cells, CPU " << fmt(ref.value("cpu_seconds", kNaN), 4) << " s, steady "
+     << (ref.value("steady_state_reached", false) ? "yes" : "**no**") << " (a member of neither family).\n\n";
+  if (g.contains("note")) {
+    md << g.value("note", "") << ".\n\n";
+    return;
+  }
+  md << "| quantity | observed order | Richardson estimate | GCI (fine) | note |\n|---|---|---|---|---|\n";
+  for (const char* q : {"standoff", "drag_coefficient", "stagnation_pressure_ratio"}) {
+    const auto& c = g[q];
+    auto num = [&](const char* k) { return c.contains(k) && c[k].is_number() ? c[k].get<double>() : kNaN; };
+    md << "| " << q << " | " << fmt(num("observed_order"), 3) << " | " << fmt(num("extrapolated"), 5) << " | "
+       << fmt(num("gci_fine"), 3) << " | " << c.value("note", "") << " |\n";
+  }
+  md << "\nRichardson triple: the reference grid and the uniform grids 2x and 4x coarser (Roache; safety factor "
+        "1.25). The stagnation pressure's exact value is Rayleigh's; its row checks the extrapolation.\n\n";
+}
+
 }  // namespace
 
 nlohmann::json make_summary(const ReportInputs& in) {
@@ -75,6 +316,7 @@ nlohmann::json make_summary(const ReportInputs& in) {
   const auto& ref = in.reference;
   nlohmann::json j;
   j["scene"] = in.scene.name;
+  j["predictor"] = "granular";
   j["reference"] = {{"quantity", ref.quantity}, {"source", ref.source}, {"value", ref.value},
                     {"pressure_ratio", ref.pressure_ratio}};
   j["clustered"] = c.clustered_pick >= 0 ? run_object(c.clustered[c.clustered_pick], ref) : nlohmann::json(nullptr);
@@ -82,6 +324,7 @@ nlohmann::json make_summary(const ReportInputs& in) {
   if (c.uniform_pick >= 0) j["uniform"]["as_accurate_as_clustered"] = c.uniform_matches;
   const auto& p = in.prediction;
   nlohmann::json g = {{"shock", p.value("shock", "none")}, {"wall_seconds", p.value("granular_wall_seconds", kNaN)},
+                      {"cpu_seconds", p.value("predictor_cpu_seconds", kNaN)},
                       {"restitution", in.scene.granular.restitution}};
   if (ref.quantity == "shock_angle_deg") {
     const double a = p.contains("shock_angle_deg") && p["shock_angle_deg"].is_number() ? p["shock_angle_deg"].get<double>() : kNaN;
@@ -95,17 +338,38 @@ nlohmann::json make_summary(const ReportInputs& in) {
     g["relative_error"] = std::abs(sd - ref.value) / ref.value;
   }
   j["granular"] = g;
+  const auto& v = in.verdict;
+  j["primary_error"] = v.primary.name;
+  j["speedup_cfd"] = interval_json(v.speedup_cfd);
+  j["speedup_total"] = interval_json(v.speedup_total);
+  j["verdict"] = v.verdict;
+  j["verdict_details"] = verdict_json(v);
   j["speedup_cfd_at_equal_error"] = c.speedup_cfd;
   j["speedup_total_at_equal_error"] = c.speedup_total;
   j["speedup_lower_bound"] = c.speedup_bound;
   j["speedup_total_lower_bound"] = c.speedup_total_bound;
   j["calibration"] = in.calibration_note.empty() ? nlohmann::json(nullptr) : nlohmann::json(in.calibration_note);
   j["total_wall_seconds"] = in.total_seconds;
+  j["grid_convergence"] = in.grid_convergence;
   nlohmann::json runs = nlohmann::json::array();
   for (const auto& r : c.uniform) runs.push_back(r.to_json());
   for (const auto& r : c.clustered) runs.push_back(r.to_json());
   j["runs"] = runs;
   return j;
+}
+
+std::string verdict_line(const nlohmann::json& summary) {
+  auto num = [](const nlohmann::json& o, const char* k) {
+    return o.contains(k) && o[k].is_number() ? o[k].get<double>() : kNaN;
+  };
+  const auto& t = summary["speedup_total"];
+  const auto& c = summary["speedup_cfd"];
+  std::ostringstream os;
+  os << summary.value("scene", "") << ": " << summary.value("verdict", "not distinguishable") << " — total CPU "
+     << interval_text({num(t, "value"), num(t, "ci_low"), num(t, "ci_high")}) << ", CFD CPU "
+     << interval_text({num(c, "value"), num(c, "ci_low"), num(c, "ci_high")}) << " at equal "
+     << summary.value("primary_error", "error");
+  return os.str();
 }
 
 void write_report(const ReportInputs& in, const nlohmann::json& summary) {
@@ -115,139 +379,60 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
   const auto& c = in.comparison;
   const auto& ref = in.reference;
   const bool angle = ref.quantity == "shock_angle_deg";
-  const std::string qlabel = angle ? "shock angle error (deg)" : "relative standoff error";
-
-  // Error against CFD wall time and against cells, both families.
-  PlotSpec et{"Error against CFD wall time", "CFD wall time to steady state (s)", qlabel, true, true, {}, {}};
-  PlotSpec ec{"Error against cells", "cells", qlabel, true, true, {}, {}};
-  for (const auto* fam : {&c.uniform, &c.clustered}) {
-    Series st, sc;
-    st.title = sc.title = fam == &c.uniform ? "uniform" : "clustered at the granular shock";
-    for (const auto& r : *fam) {
-      if (!std::isfinite(r.error) || r.error <= 0) continue;
-      st.x.push_back(r.cfd_wall_seconds);
-      st.y.push_back(r.error);
-      sc.x.push_back(static_cast<double>(r.cells));
-      sc.y.push_back(r.error);
-    }
-    et.series.push_back(st);
-    ec.series.push_back(sc);
-  }
-  plot_png(et, fig + "/error_vs_time.png");
-  plot_png(ec, fig + "/error_vs_cells.png");
-
-  // Granular fields with the fitted shock; granular, CFD and exact shocks on one plot.
-  const std::string gdir = dir + "/granular", sdir = dir + "/shockfit";
-  const auto granular_pts = accepted_points(sdir + "/shock.csv");
-  std::vector<scene::Vec2> cfd_pts;
-  std::string cfd_name;
-  if (c.clustered_pick >= 0) {
-    const auto& r = c.clustered[c.clustered_pick];
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "clustered_h%g", r.level);
-    cfd_name = buf;
-    cfd_pts = accepted_points(dir + "/cfd/" + cfd_name + "/shockfit/shock.csv");
-  }
-  std::vector<scene::Vec2> exact;
-  if (angle) {
-    const double b = ref.value * kDeg;
-    const auto d = scene::scene_domain(in.scene);
-    for (int k = 0; k <= 20; ++k) {
-      const double x = d.xmax * k / 20.0;
-      if (x * std::tan(b) <= d.ymax) exact.push_back({x, x * std::tan(b)});
-    }
-  }
-  try {
-    const auto lat = scene::read_vti(gdir + "/fields.vti");
-    field_png(lat, "volume_fraction", "Granular volume fraction with the fitted shock",
-              {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}}, fig + "/granular_volume_fraction.png");
-    field_png(lat, "u", "Granular velocity u", {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}},
-              fig + "/granular_velocity.png");
-  } catch (const std::exception&) {
-  }
-  // The three shocks over the clustered CFD solution's Mach field.
-  try {
-    const auto lat = scene::read_vti(dir + "/cfd/" + cfd_name + "/fields.vti");
-    field_png(lat, "mach", "Shocks over the clustered CFD Mach field: granular, CFD and exact",
-              {{"granular", granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
-               {"CFD (clustered)", cfd_pts, "points pt 4 ps 0.8 lc rgb 'black'"},
-               {"exact", exact, "lines lw 2 dt 2 lc rgb 'magenta'"}},
-              fig + "/shocks_compared.png");
-  } catch (const std::exception&) {
-  }
-  // Mach field of each CFD solution.
-  for (const auto* fam : {&c.uniform, &c.clustered}) {
-    for (const auto& r : *fam) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%s_h%g", r.family.c_str(), r.level);
-      try {
-        const auto lat = scene::read_vti(dir + "/cfd/" + buf + "/fields.vti");
-        field_png(lat, "mach", std::string("CFD Mach number, ") + buf,
-                  {{"CFD shock", accepted_points(dir + "/cfd/" + buf + "/shockfit/shock.csv"), "points pt 7 ps 0.6 lc rgb 'white'"}},
-                  fig + "/cfd_mach_" + buf + ".png");
-      } catch (const std::exception&) {
-      }
-      for (const char* f : {"history.png", "convergence.png"})
-        copy_if_exists(dir + "/cfd/" + buf + "/" + f, fig + "/cfd_" + std::string(buf) + "_" + f);
-      for (const char* f : {"mesh.png", "mesh_zoom.png"})
-        copy_if_exists(dir + "/meshgen/" + buf + "/" + f, fig + "/mesh_" + std::string(buf) + "_" + f);
-    }
-  }
+  Warnings warnings;
+  cost_figures(in, fig);
+  field_figures(in, fig, warnings);
 
   std::ostringstream md;
   md << "# " << in.scene.name << ": granular-predicted grid against uniform grids\n\n";
-  md << "Generated by `pipeline run`. Reference: " << ref.source << " ("
-     << (angle ? "shock angle " + fmt(ref.value, 4) + " deg" : "standoff " + fmt(ref.value, 4) + " body lengths") << ").\n\n";
+  md << "Generated by `pipeline run`. Costs are CPU seconds (user + system, solver ranks and "
+        "meshing tools included; wall seconds beside them), one run per grid; the intervals come from the "
+        "families' fits. Shock reference: "
+     << ref.source << " ("
+     << (angle ? "shock angle " + fmt(ref.value, 4) + " deg" : "standoff " + fmt(ref.value, 4) + " body lengths")
+     << ").\n\n";
   if (!in.calibration_note.empty()) md << "Calibration: " << in.calibration_note << ".\n\n";
-  md << "## Verdict\n\n";
-  if (std::isfinite(c.speedup_cfd)) {
-    md << "At equal error the clustered grid reaches steady state **" << fmt(c.speedup_cfd, 3)
-       << "x** faster in CFD wall time than the uniform family (interpolated), and **" << fmt(c.speedup_total, 3)
-       << "x** faster including the granular stage and meshing.\n\n";
-  } else if (std::isfinite(c.speedup_bound)) {
-    md << "No uniform grid of the series reached the clustered grid's error; against the finest uniform grid the "
-          "clustered grid is at least **" << fmt(c.speedup_bound, 3) << "x** faster in CFD wall time, and at least **"
-       << fmt(c.speedup_total_bound, 3) << "x** including the granular stage and meshing.\n\n";
-  } else {
-    md << "No speedup could be computed (missing runs or errors; see the table).\n\n";
-  }
+  verdict_section(md, in);
   const auto& g = summary["granular"];
   md << "Granular prediction: shock " << g.value("shock", "none") << ", ";
   if (angle) md << "angle " << fmt(g.value("shock_angle_deg", kNaN), 4) << " deg (error " << fmt(g.value("error_deg", kNaN), 3) << " deg)";
   else md << "standoff " << fmt(g.value("standoff", kNaN), 4) << " (relative error " << fmt(g.value("relative_error", kNaN), 3) << ")";
-  md << ", granular wall time " << fmt(g.value("wall_seconds", kNaN), 3) << " s.";
+  md << ", CPU " << fmt(g.value("cpu_seconds", kNaN), 3) << " s (wall " << fmt(g.value("wall_seconds", kNaN), 3)
+     << " s).";
   if (angle && std::abs(g.value("error_deg", 0.0)) > 1.0)
     md << " **The granular shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
-  md << "\n\n## Runs\n\n| family | h / h_min | cells | CFD wall s | steps | steady | " << (angle ? "angle (deg)" : "standoff")
-     << " | error | " << (angle ? "p2/p1 (exact " + fmt(ref.pressure_ratio, 4) + ")" : "")
-     << " | speedup at equal error |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  md << "\n\n";
+  runs_table(md, in);
+  convergence_section(md, in.grid_convergence);
   for (const auto* fam : {&c.uniform, &c.clustered})
     for (const auto& r : *fam)
-      md << "| " << r.family << " | " << r.level << " | " << r.cells << " | " << fmt(r.cfd_wall_seconds) << " | " << r.steps
-         << " | " << (r.steady ? "yes" : "no") << " | " << fmt(r.value, 4) << " ± " << fmt(r.value_ci, 2) << " | "
-         << fmt(r.error) << " | "
-         << (angle ? fmt(r.wall_pressure_ratio, 4) : "") << " | "
-         << (r.family == "clustered" ? fmt(r.speedup_cfd, 3) : "") << " |\n";
-  md << "\n## Figures\n\n";
+      if (!r.note.empty()) warnings.lines.push_back(grid_name(r) + ": " + r.note);
+  if (!warnings.lines.empty()) {
+    md << "## Warnings\n\n";
+    for (const auto& l : warnings.lines) md << "- " << l << "\n";
+    md << "\n";
+  }
+  md << "## Figures\n\n";
   auto img = [&](const std::string& file, const std::string& caption) {
     if (fs::exists(fig + "/" + file)) md << "![" << caption << "](figures/" << file << ")\n\n*" << caption << "*\n\n";
   };
-  img("error_vs_time.png", "Error against CFD wall time");
-  img("error_vs_cells.png", "Error against cells");
+  img("error_vs_total_cpu.png", "Primary error against total CPU time, with each family's fit");
+  img("error_vs_cfd_cpu.png", "Primary error against CFD CPU time, with each family's fit");
+  img("error_vs_cells.png", "Primary error against cells");
   img("granular_volume_fraction.png", "Granular volume fraction with the fitted shock");
   img("granular_velocity.png", "Granular velocity u");
   img("shocks_compared.png", "Granular, CFD and exact shocks");
   for (const auto* fam : {&c.uniform, &c.clustered})
     for (const auto& r : *fam) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%s_h%g", r.family.c_str(), r.level);
-      img("mesh_" + std::string(buf) + "_mesh.png", std::string("Grid ") + buf);
-      img("cfd_" + std::string(buf) + "_history.png", std::string("Convergence history ") + buf);
-      img("cfd_" + std::string(buf) + "_convergence.png", std::string("Convergence history ") + buf);
-      img("cfd_mach_" + std::string(buf) + ".png", std::string("CFD Mach number ") + buf);
+      const std::string buf = grid_name(r);
+      img("mesh_" + buf + "_mesh.png", "Grid " + buf);
+      img("cfd_" + buf + "_history.png", "Convergence history " + buf);
+      img("cfd_" + buf + "_convergence.png", "Convergence history " + buf);
+      img("cfd_mach_" + buf + ".png", "CFD Mach number " + buf);
     }
-  md << "Errors are against the reference; ± is the 95% interval of the shock located on the CFD solution "
-        "(its noise floor limits how small an error can be resolved).\n\n";
+  md << "Errors are against the references named above; ± on the primary error is its change over the last write "
+        "interval (the steady state's flicker), ± on the shock is the 95% interval of the shock located on the CFD "
+        "solution.\n\n";
   md << "Total pipeline wall time: " << fmt(in.total_seconds, 4) << " s (cached stages cost nothing).\n";
   scene::write_file_atomic(dir + "/report.md", md.str());
 }

@@ -1,5 +1,6 @@
 #include "pipeline/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -11,10 +12,14 @@
 #include "meshgen/mesh.hpp"
 #include "pipeline/calibration.hpp"
 #include "pipeline/compare.hpp"
+#include "pipeline/error_measures.hpp"
+#include "pipeline/grid_convergence.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/stage_cache.hpp"
+#include "pipeline/verdict.hpp"
 #include "scene/body.hpp"
 #include "scene/cli.hpp"
+#include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
@@ -30,6 +35,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDeg = std::numbers::pi / 180.0;
+// Digits kept of a calibrated restitution: the resolved scene echoes it
+// exactly, so rerunning the resolved scene reproduces the run bit for bit.
+constexpr double kRestitutionQuantum = 1e-6;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -50,6 +58,10 @@ std::string level_name(const std::string& family, double level) {
   return buf;
 }
 
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
 Reference reference_for(const scene::Scene& s) {
   Reference r;
   r.pressure_ratio = kNaN;
@@ -66,10 +78,10 @@ Reference reference_for(const scene::Scene& s) {
   }
   r.quantity = "standoff";
   if (b.kind == scene::BodyKind::disc) {
-    r.source = "Billig's correlation for cylinders";
+    r.source = "Billig's correlation for cylinders (a comparison, not an exact reference)";
     r.value = scene::billig_standoff_cylinder(s.freestream.mach);  // in radii = body lengths
   } else {
-    r.source = "finest uniform grid";
+    r.source = "finest uniform grid (a comparison, not an exact reference)";
     r.value = kNaN;  // filled from the finest uniform run
   }
   return r;
@@ -100,6 +112,195 @@ double shock_ci(const shockfit::ShockResult& r) {
   return kNaN;
 }
 
+// What the grids need of the prediction.
+struct PredictionInfo {
+  std::string fingerprint;  // of the shockfit stage: clustered grids depend on it
+  std::string shock_csv;
+  bool has_shock = false;
+};
+
+// What one pipeline run shares between its steps.
+struct Context {
+  const scene::Scene& s;
+  const RunOptions& o;
+  StageCache cache;
+  scene::Progress& progress;
+  int done = 0;
+  void step(const std::string& what) { progress.update(++done, what); }
+};
+
+// A grid of either family, meshed and cached; returns meshgen's summary with
+// the stage's CPU seconds (gmsh in-process, gmshToFoam and checkMesh as children).
+nlohmann::json mesh_grid(Context& cx, const std::string& family, double level, const std::string& fp_shock,
+                         const std::string& shock_csv) {
+  const auto& s = cx.s;
+  const bool clustered = family == "clustered";
+  const std::string stage = "meshgen/" + level_name(family, level);
+  const std::string fp = fingerprint({clustered ? fp_shock : "", scene::section_yaml(s, "body"),
+                                      scene::section_yaml(s, "domain"), scene::section_yaml(s, "mesh"), family,
+                                      std::to_string(level)});
+  if (forced(cx.o, "meshgen")) cx.cache.invalidate(stage);
+  if (cx.cache.fresh(stage, fp)) return cx.cache.result(stage);
+  cx.cache.invalidate(stage);
+  meshgen::MeshRequest req = clustered ? meshgen::request_from_shock_csv(shock_csv) : meshgen::MeshRequest{};
+  req.uniform = !clustered;
+  req.h_min = s.mesh.h_min * level;
+  req.h_max = clustered ? s.mesh.h_max * level : s.mesh.h_min * level;
+  const scene::CpuStopwatch cpu;
+  const auto m = meshgen::generate_mesh(s, req, cx.cache.dir(stage));
+  nlohmann::json msum = m.summary();
+  msum["seconds"] = m.seconds;
+  msum["stage_cpu_seconds"] = cpu.seconds();
+  msum["fingerprint"] = fp;
+  cx.cache.mark_done(stage, fp, msum);
+  return msum;
+}
+
+// rhoCentralFoam on a meshed grid to a measured steady state, cached; the
+// summary gains the solver's CPU seconds (all ranks, as waited-for children).
+nlohmann::json solve_grid(Context& cx, const std::string& name, const std::string& fp_mesh) {
+  const auto& s = cx.s;
+  const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
+  const std::string fp = fingerprint({fp_mesh, scene::section_yaml(s, "cfd"), scene::section_yaml(s, "freestream")});
+  if (forced(cx.o, "cfd")) cx.cache.invalidate(cstage);
+  if (cx.cache.fresh(cstage, fp)) return cx.cache.result(cstage);
+  cx.cache.invalidate(cstage);
+  cfd::CaseOptions co;
+  co.np = cx.o.np;
+  const scene::CpuStopwatch cpu;
+  const auto c = cfd::run_case(s, cx.cache.dir(mstage), cx.cache.dir(cstage), co);
+  const double solver_cpu = cpu.seconds();
+  check_interrupt("cfd " + name);
+  const auto lat = cfd::resample_to_lattice(s, cx.cache.dir(cstage), s.granular.lattice_nx, s.granular.lattice_ny);
+  scene::write_vti(lat, cx.cache.dir(cstage) + "/fields.vti");
+  nlohmann::json csum = c.summary();
+  csum["stage_cpu_seconds"] = solver_cpu;
+  csum["fingerprint"] = fp;
+  cx.cache.mark_done(cstage, fp, csum);
+  return csum;
+}
+
+// The CFD shock, located like the granular one with the shock window
+// widened to the grid's smeared shock (same rule for both families).
+nlohmann::json locate_cfd_shock(Context& cx, const std::string& name, double level, const std::string& fp_cfd) {
+  const std::string cstage = "cfd/" + name, fstage = cstage + "/shockfit";
+  const scene::Scene fs_scene = cfd_shockfit_scene(cx.s, level * cx.s.mesh.h_min);
+  const std::string fp = fingerprint({fp_cfd, scene::section_yaml(fs_scene, "shockfit")});
+  if (!forced(cx.o, "cfd") && cx.cache.fresh(fstage, fp)) return cx.cache.result(fstage);
+  cx.cache.invalidate(fstage);
+  const auto lat = scene::read_vti(cx.cache.dir(cstage) + "/fields.vti");
+  const auto sh = shockfit::locate_shock(fs_scene, lat);
+  shockfit::write_outputs(fs_scene, lat, sh, cx.cache.dir(fstage));
+  nlohmann::json fsum = sh.summary();
+  fsum["shock_value"] = shock_value(sh);
+  fsum["shock_value_ci"] = shock_ci(sh);
+  cx.cache.mark_done(fstage, fp, fsum);
+  return fsum;
+}
+
+// The exact-reference error measures of a finished case. A failure to
+// measure is not silent: it is kept as the run's note and shown in the report.
+void measure_errors(Context& cx, const std::string& name, const PrimaryError& primary, GridRun& run) {
+  try {
+    const CaseErrors e = measure_case_errors(cx.s, cx.cache.dir("cfd/" + name));
+    run.l1_density = e.l1_density.value;
+    run.l1_density_ci = e.l1_density.uncertainty;
+    run.l1_pressure = e.l1_pressure.value;
+    run.stagnation_pressure_ratio = e.stagnation_pressure_ratio;
+    run.stagnation_pressure_error = e.stagnation_pressure.value;
+    run.drag_coefficient = e.drag_coefficient;
+    const MeasuredError& p = primary.name == "l1_density" ? e.l1_density : e.stagnation_pressure;
+    run.primary_error = p.value;
+    run.primary_error_ci = std::isfinite(p.uncertainty) ? p.uncertainty : 0.0;
+  } catch (const std::exception& ex) {
+    run.note = std::string("error measures failed: ") + ex.what();
+    scene::log_line("pipeline: " + name + ": " + run.note, true);
+  }
+}
+
+// One member of a family: mesh, solve, locate the CFD shock, measure.
+GridRun run_member(Context& cx, const std::string& family, double level, const PredictionInfo& pred,
+                   const PrimaryError& primary) {
+  const std::string name = level_name(family, level);
+  const nlohmann::json msum = mesh_grid(cx, family, level, pred.fingerprint, pred.shock_csv);
+  check_interrupt("meshgen " + name);
+  cx.step("mesh " + name);
+  GridRun run;
+  run.family = family;
+  run.level = level;
+  run.cells = msum.value("cells", 0L);
+  run.mesh_seconds = msum.value("seconds", 0.0);
+  run.mesh_cpu_seconds = number_or_nan(msum, "stage_cpu_seconds");
+  if (!cx.s.pipeline.cfd) return run;
+  const nlohmann::json csum = solve_grid(cx, name, msum.value("fingerprint", ""));
+  const nlohmann::json fsum = locate_cfd_shock(cx, name, level, csum.value("fingerprint", ""));
+  run.cfd_wall_seconds = number_or_nan(csum, "wall_seconds");
+  run.cfd_cpu_seconds = number_or_nan(csum, "stage_cpu_seconds");
+  run.steps = csum.value("steps", 0L);
+  run.flow_throughs = number_or_nan(csum, "flow_throughs");
+  run.steady = csum.value("steady_state_reached", false);
+  run.shock = fsum.value("shock", "none");
+  run.value = number_or_nan(fsum, "shock_value");
+  run.value_ci = number_or_nan(fsum, "shock_value_ci");
+  run.wall_pressure_ratio = number_or_nan(csum, "wall_pressure_ratio");
+  measure_errors(cx, name, primary, run);
+  cx.step("cfd " + name);
+  return run;
+}
+
+// Levels are user numbers (2.8, 1.4): equal within this relative slack.
+constexpr double kLevelSlack = 1e-9;
+
+const GridRun* at_level(const std::vector<GridRun>& fam, double level) {
+  for (const auto& r : fam)
+    if (std::abs(r.level - level) <= kLevelSlack * level) return &r;
+  return nullptr;
+}
+
+nlohmann::json convergence_json(const GridConvergence& g) {
+  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  return {{"monotone", g.monotone}, {"observed_order", num(g.order)}, {"extrapolated", num(g.extrapolated)},
+          {"gci_fine", num(g.gci_fine)}, {"note", g.note}};
+}
+
+// Bodies without an exact field solution: one uniform grid finer than every
+// family member (in neither family), and Richardson extrapolation of the
+// standoff and the drag coefficient from it and the uniform grids two and
+// four times coarser. Null when the scene needs none or it cannot be formed.
+nlohmann::json reference_study(Context& cx, const PredictionInfo& info, const PrimaryError& primary,
+                               const std::vector<GridRun>& uniform) {
+  const auto& p = cx.s.pipeline;
+  if (primary.name == "l1_density" || !p.reference_grid || !p.cfd || p.levels.empty()) return nullptr;
+  const double finest = *std::min_element(p.levels.begin(), p.levels.end());
+  const double level = p.reference_level.value_or(0.5 * finest);
+  constexpr double kRatio = 2.0;
+  const GridRun* r2 = at_level(uniform, level * kRatio);
+  const GridRun* r3 = at_level(uniform, level * kRatio * kRatio);
+  const GridRun ref = run_member(cx, "reference", level, info, primary);
+  nlohmann::json j;
+  j["reference_run"] = ref.to_json();
+  j["refinement_ratio"] = kRatio;
+  if (!r2 || !r3) {
+    j["note"] = "no uniform grids at 2x and 4x the reference level: no Richardson triple";
+    return j;
+  }
+  j["triple"] = {ref.level, r2->level, r3->level};
+  j["standoff"] = convergence_json(richardson(ref.value, r2->value, r3->value, kRatio));
+  j["drag_coefficient"] =
+      convergence_json(richardson(ref.drag_coefficient, r2->drag_coefficient, r3->drag_coefficient, kRatio));
+  j["stagnation_pressure_ratio"] = convergence_json(
+      richardson(ref.stagnation_pressure_ratio, r2->stagnation_pressure_ratio, r3->stagnation_pressure_ratio, kRatio));
+  return j;
+}
+
+std::vector<VerdictRun> verdict_runs(const std::vector<GridRun>& runs) {
+  std::vector<VerdictRun> out;
+  for (const auto& r : runs)
+    out.push_back({r.family, r.level, r.cells, r.cfd_cpu_seconds, r.mesh_cpu_seconds, r.primary_error,
+                   r.primary_error_ci, r.steady});
+  return out;
+}
+
 }  // namespace
 
 std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
@@ -117,9 +318,10 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
   const auto t = read_calibration(path);
   const auto e = interpolate_restitution(t, s.freestream.mach, wedge ? s.body->angle_deg : kNaN);
   if (!e) return "";
-  s.granular.restitution = *e;
+  s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
   char buf[400];
-  std::snprintf(buf, sizeof buf, "granular.restitution = %.4f from the calibration table %s%s", *e, path.c_str(),
+  std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
+                s.granular.restitution, path.c_str(),
                 wedge ? "" : " (by Mach number alone: the table is calibrated on wedges, so this is an extrapolation)");
   return buf;
 }
@@ -138,11 +340,13 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     granular::RunOptions go;
     go.out_dir = cache.dir("granular");
     go.np = np;
+    const scene::CpuStopwatch cpu;
     auto r = granular::run_flow_scene(s, go);
     check_interrupt("the granular stage");
     if (r.summary.value("interrupted", false))
       throw scene::RunError("interrupted during the granular stage; rerun to resume");
     gsum = r.summary;
+    gsum["stage_cpu_seconds"] = cpu.seconds();
     fields = std::move(r.fields);
     cache.mark_done("granular", fp_g, gsum);
   }
@@ -152,13 +356,18 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     ssum = cache.result("shockfit");
   } else {
     cache.invalidate("shockfit");
+    const scene::CpuStopwatch cpu;
     const auto r = shockfit::locate_shock(s, fields);
     shockfit::write_outputs(s, fields, r, cache.dir("shockfit"));
     ssum = r.summary();
+    ssum["stage_cpu_seconds"] = cpu.seconds();
     cache.mark_done("shockfit", fp_s, ssum);
   }
   nlohmann::json out = ssum;
   out["granular_wall_seconds"] = gsum.value("wall_seconds", kNaN);
+  out["granular_cpu_seconds"] = number_or_nan(gsum, "stage_cpu_seconds");
+  out["shockfit_cpu_seconds"] = number_or_nan(ssum, "stage_cpu_seconds");
+  out["predictor_cpu_seconds"] = number_or_nan(gsum, "stage_cpu_seconds") + number_or_nan(ssum, "stage_cpu_seconds");
   out["granular"] = gsum;
   out["fingerprint"] = fp_s;
   return out;
@@ -171,121 +380,46 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const std::string calib_note = apply_calibration(s, o.calibration_path);
   if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));
-  StageCache cache(o.out_dir);
   const auto& levels = s.pipeline.levels;
-  const int n_stages = 2 + (s.pipeline.cfd ? 4 : 2) * static_cast<int>(levels.size()) + 1;
+  const int n_stages = 2 + (s.pipeline.cfd ? 2 : 1) * (2 * static_cast<int>(levels.size()) + 1) + 1;
   scene::Progress progress("pipeline", n_stages, "stages");
-  int done = 0;
-  auto step = [&](const std::string& what) { progress.update(++done, what); };
+  Context cx{s, o, StageCache(o.out_dir), progress};
 
-  // 1-2: granular prediction and its shock.
-  if (forced(o, "granular")) cache.invalidate("granular");
-  if (forced(o, "shockfit")) cache.invalidate("shockfit");
+  // The prediction: granular gas and its fitted shock.
+  if (forced(o, "granular")) cx.cache.invalidate("granular");
+  if (forced(o, "shockfit")) cx.cache.invalidate("shockfit");
   const auto pred = run_prediction(s, o.out_dir, o.np);
   check_interrupt("shockfit");
-  done = 2;
-  step("granular + shockfit");
-  const std::string shock_csv = cache.dir("shockfit") + "/shock.csv";
-  const std::string fp_s = pred["fingerprint"];
+  cx.done = 2;
+  cx.step("granular + shockfit");
+  const PredictionInfo info{pred.value("fingerprint", ""), cx.cache.dir("shockfit") + "/shock.csv",
+                            pred.value("shock", "none") != "none"};
 
-  // 3: grids and CFD runs, coarse to fine, both families.
-  const Reference ref0 = reference_for(s);
+  // Both families, coarse to fine.
+  const PrimaryError primary = primary_error_for(s);
   std::vector<GridRun> fam_c, fam_u;
-  for (const std::string family : {"uniform", "clustered"}) {
-    for (const double level : levels) {
-      const std::string name = level_name(family, level);
-      const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
-      const bool clustered = family == "clustered";
-      if (clustered && pred.value("shock", "none") == "none") {
-        scene::log_line("pipeline: no granular shock found; clustered grid " + name + " skipped", true);
-        continue;
-      }
-      const std::string fp_m = fingerprint({clustered ? fp_s : "", scene::section_yaml(s, "body"),
-                                            scene::section_yaml(s, "domain"), scene::section_yaml(s, "mesh"),
-                                            family, std::to_string(level)});
-      if (forced(o, "meshgen")) cache.invalidate(mstage);
-      nlohmann::json msum;
-      if (cache.fresh(mstage, fp_m)) {
-        msum = cache.result(mstage);
-      } else {
-        cache.invalidate(mstage);
-        meshgen::MeshRequest req = clustered ? meshgen::request_from_shock_csv(shock_csv) : meshgen::MeshRequest{};
-        req.uniform = !clustered;
-        req.h_min = s.mesh.h_min * level;
-        req.h_max = clustered ? s.mesh.h_max * level : s.mesh.h_min * level;
-        const auto m = meshgen::generate_mesh(s, req, cache.dir(mstage));
-        msum = m.summary();
-        msum["seconds"] = m.seconds;
-        cache.mark_done(mstage, fp_m, msum);
-      }
-      check_interrupt("meshgen " + name);
-      step("mesh " + name);
-      GridRun run;
-      run.family = family;
-      run.level = level;
-      run.cells = msum.value("cells", 0L);
-      run.mesh_seconds = msum.value("seconds", 0.0);
-      if (s.pipeline.cfd) {
-        const std::string fp_c = fingerprint({fp_m, scene::section_yaml(s, "cfd"), scene::section_yaml(s, "freestream")});
-        if (forced(o, "cfd")) cache.invalidate(cstage);
-        nlohmann::json csum;
-        if (cache.fresh(cstage, fp_c)) {
-          csum = cache.result(cstage);
-        } else {
-          cache.invalidate(cstage);
-          cfd::CaseOptions co;
-          co.np = o.np;
-          const auto c = cfd::run_case(s, cache.dir(mstage), cache.dir(cstage), co);
-          check_interrupt("cfd " + name);
-          const auto lat = cfd::resample_to_lattice(s, cache.dir(cstage), s.granular.lattice_nx, s.granular.lattice_ny);
-          scene::write_vti(lat, cache.dir(cstage) + "/fields.vti");
-          csum = c.summary();
-          cache.mark_done(cstage, fp_c, csum);
-        }
-        // The CFD shock is located like the granular one, with the shock
-        // window widened to the grid's smeared shock (same rule for both families).
-        const scene::Scene fs_scene = cfd_shockfit_scene(s, level * s.mesh.h_min);
-        const std::string fstage = cstage + "/shockfit";
-        const std::string fp_f = fingerprint({fp_c, scene::section_yaml(fs_scene, "shockfit")});
-        nlohmann::json fsum;
-        if (!forced(o, "cfd") && cache.fresh(fstage, fp_f)) {
-          fsum = cache.result(fstage);
-        } else {
-          cache.invalidate(fstage);
-          const auto lat = scene::read_vti(cache.dir(cstage) + "/fields.vti");
-          const auto sh = shockfit::locate_shock(fs_scene, lat);
-          shockfit::write_outputs(fs_scene, lat, sh, cache.dir(fstage));
-          fsum = sh.summary();
-          fsum["shock_value"] = shock_value(sh);
-          fsum["shock_value_ci"] = shock_ci(sh);
-          cache.mark_done(fstage, fp_f, fsum);
-        }
-        run.cfd_wall_seconds = csum.value("wall_seconds", kNaN);
-        run.steps = csum.value("steps", 0L);
-        run.steady = csum.value("steady_state_reached", false);
-        run.shock = fsum.value("shock", "none");
-        run.value = fsum["shock_value"].is_number() ? fsum["shock_value"].get<double>() : kNaN;
-        run.value_ci = fsum["shock_value_ci"].is_number() ? fsum["shock_value_ci"].get<double>() : kNaN;
-        run.wall_pressure_ratio =
-            csum["wall_pressure_ratio"].is_number() ? csum["wall_pressure_ratio"].get<double>() : kNaN;
-        step("cfd " + name);
-      }
-      (clustered ? fam_c : fam_u).push_back(run);
-    }
+  for (const double level : levels) fam_u.push_back(run_member(cx, "uniform", level, info, primary));
+  if (info.has_shock) {
+    for (const double level : levels) fam_c.push_back(run_member(cx, "clustered", level, info, primary));
+  } else {
+    scene::log_line("pipeline: no granular shock found; no clustered grids", true);
   }
 
-  // 4: comparison and report.
-  Reference ref = ref0;
+  const nlohmann::json convergence = reference_study(cx, info, primary, fam_u);
+
+  // Comparison, verdict and report.
+  Reference ref = reference_for(s);
   if (!std::isfinite(ref.value) && !fam_u.empty()) ref.value = fam_u.back().value;
   for (auto& r : fam_c) score(r, ref);
   for (auto& r : fam_u) score(r, ref);
-  const double granular_seconds = pred.value("granular_wall_seconds", 0.0);
-  const Comparison cmp = compare(fam_c, fam_u, granular_seconds);
-  ReportInputs in{s, o.out_dir, pred, ref, cmp, calib_note, seconds_since(t_start)};
+  const Comparison cmp = compare(fam_c, fam_u, pred.value("granular_wall_seconds", 0.0));
+  const Verdict verdict =
+      make_verdict(primary, verdict_runs(fam_c), verdict_runs(fam_u), number_or_nan(pred, "predictor_cpu_seconds"));
+  ReportInputs in{s, o.out_dir, pred, ref, cmp, verdict, calib_note, seconds_since(t_start), convergence};
   const nlohmann::json summary = make_summary(in);
   scene::write_json_atomic(o.out_dir + "/summary.json", summary);
   write_report(in, summary);
-  step("report");
+  cx.step("report");
   progress.finish();
   return summary;
 }

@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "scene/errors.hpp"
+#include "code_hash.hpp"
 #include "version.hpp"
 
 namespace scene {
@@ -41,6 +42,6 @@ int run_guarded(const std::string& program, const std::function<int()>& body) {
   }
 }
 
-std::string version_string() { return kVersion; }
+std::string version_string() { return std::string(kVersion) + "+" + kCodeHash; }
 
 }  // namespace scene

@@ -59,6 +59,13 @@ double oblique_downstream_mach(double mach, double beta, double theta, double ga
   return std::sqrt(mn2d) / std::sin(beta - theta);
 }
 
+double rayleigh_pitot_ratio(double mach, double gamma) {
+  const double m2 = mach * mach, g = gamma;
+  if (mach <= 1.0) return std::pow(1.0 + 0.5 * (g - 1.0) * m2, g / (g - 1.0));
+  const double stagnation = std::pow((g + 1.0) * (g + 1.0) * m2 / (4.0 * g * m2 - 2.0 * (g - 1.0)), g / (g - 1.0));
+  return stagnation * (1.0 - g + 2.0 * g * m2) / (g + 1.0);
+}
+
 double billig_standoff_cylinder(double mach) { return 0.386 * std::exp(4.67 / (mach * mach)); }
 double billig_standoff_sphere(double mach) { return 0.143 * std::exp(3.24 / (mach * mach)); }
 double billig_shock_radius_cylinder(double mach) {

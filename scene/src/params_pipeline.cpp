@@ -7,6 +7,8 @@ PipelineParams parse_pipeline(Section& s) {
   p.levels = s.numbers("levels", p.levels, {0.0, 1000.0, true, false});
   p.calibration = s.string("calibration", p.calibration);
   p.cfd = s.boolean("cfd", p.cfd);
+  p.reference_grid = s.boolean("reference_grid", p.reference_grid);
+  p.reference_level = s.opt_number("reference_level", {0.0, 1000.0, true, false});
   return p;
 }
 
@@ -15,6 +17,8 @@ void emit_pipeline(YAML::Emitter& e, const PipelineParams& p) {
   e << YAML::Key << "levels" << YAML::Value << YAML::Flow << p.levels;
   emit_kv(e, "calibration", p.calibration);
   emit_kv(e, "cfd", p.cfd);
+  emit_kv(e, "reference_grid", p.reference_grid);
+  emit_opt(e, "reference_level", p.reference_level);
   e << YAML::EndMap;
 }
 

@@ -117,3 +117,42 @@ TEST(EndToEnd, SweepOverRestitutionRunsInParallelAndOrdersTheAngles) {
             rows[0]["prediction"]["shock_angle_deg"].get<double>() + 3.0);
   EXPECT_TRUE(fs::exists(out / "sweep.csv"));
 }
+
+// The verdict on three levels per family: CPU costs measured for every run,
+// the exact-reference L1 error falling with refinement on uniform grids, the
+// speedups as {value, ci_low, ci_high} and a verdict read from them.
+TEST(EndToEnd, VerdictFromExactErrorsAndCpuTimes) {
+  const auto out = fresh_dir("verdict");
+  ASSERT_EQ(run("run " + kData + "/wedge_verdict.yaml --out " + out.string() + " > /dev/null"), 0);
+  const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
+  EXPECT_EQ(j["primary_error"], "l1_density");
+  EXPECT_EQ(j["predictor"], "granular");
+  for (const char* k : {"speedup_cfd", "speedup_total"}) {
+    ASSERT_TRUE(j[k].is_object()) << k;
+    for (const char* f : {"value", "ci_low", "ci_high"}) ASSERT_TRUE(j[k].contains(f)) << k << "." << f;
+    if (j[k]["value"].is_number() && j[k]["ci_low"].is_number() && j[k]["ci_high"].is_number()) {
+      EXPECT_LE(j[k]["ci_low"].get<double>(), j[k]["value"].get<double>()) << k;
+      EXPECT_GE(j[k]["ci_high"].get<double>(), j[k]["value"].get<double>()) << k;
+    }
+  }
+  const std::string v = j["verdict"];
+  EXPECT_TRUE(v == "faster" || v == "slower" || v == "not distinguishable") << v;
+  std::vector<double> uniform_l1;
+  for (const auto& r : j["runs"]) {
+    EXPECT_GT(r["cpu_seconds"].get<double>(), 0.0) << r.dump();
+    EXPECT_GT(r["mesh_cpu_seconds"].get<double>(), 0.0) << r.dump();
+    EXPECT_GT(r["steps"].get<long>(), 0) << r.dump();
+    EXPECT_TRUE(r.contains("steady_state_reached"));
+    // rhoCentralFoam costs ~0.5 us per cell-step; a figure far off means the
+    // CPU accounting missed the solver or counted something else.
+    EXPECT_GT(r["cpu_us_per_cell_step"].get<double>(), 0.05) << r.dump();
+    EXPECT_LT(r["cpu_us_per_cell_step"].get<double>(), 20.0) << r.dump();
+    const double l1 = r["l1_density"].get<double>();
+    EXPECT_GT(l1, 0.0);
+    EXPECT_LT(l1, 0.2) << "an L1 density error above 20% of the free stream is no converged solution";
+    if (r["family"] == "uniform") uniform_l1.push_back(l1);
+  }
+  ASSERT_EQ(uniform_l1.size(), 3u);
+  EXPECT_GT(uniform_l1[0], uniform_l1[2]) << "the L1 error must fall from h = 4 to h = 2 x h_min";
+  EXPECT_GT(j["granular"]["cpu_seconds"].get<double>(), 0.0);
+}

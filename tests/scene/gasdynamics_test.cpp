@@ -42,3 +42,16 @@ TEST(Gasdynamics, BilligCorrelations) {
   const double y = 1.7;
   EXPECT_NEAR(scene::billig_shock_y(4.0, 1.0, scene::billig_shock_x(4.0, 1.0, y)), y, 1e-9);
 }
+
+// Rayleigh pitot values from the verification card (NACA 1135, gamma 1.4),
+// to the 5 significant digits tabulated; M <= 1 is isentropic (M = 1: 1.8929).
+TEST(Gasdynamics, RayleighPitotTable) {
+  constexpr double kTableRel = 5e-5;
+  const std::pair<double, double> table[] = {{2.0, 5.6404}, {3.0, 12.061}, {3.5, 16.242},
+                                             {4.0, 21.068}, {5.0, 32.654}, {8.0, 82.866}};
+  for (const auto& [m, ratio] : table)
+    EXPECT_NEAR(scene::rayleigh_pitot_ratio(m, 1.4), ratio, kTableRel * ratio) << "M = " << m;
+  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0, 1.4), 1.8929, 1e-4);
+  // Continuous through M = 1 (the normal shock vanishes there).
+  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4), 1e-6);
+}

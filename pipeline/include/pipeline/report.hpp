@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/compare.hpp"
+#include "pipeline/verdict.hpp"
 #include "scene/scene.hpp"
 
 namespace pipeline {
@@ -15,11 +16,16 @@ struct ReportInputs {
   nlohmann::json prediction;  // run_prediction's result
   Reference reference;
   Comparison comparison;
+  Verdict verdict;
   std::string calibration_note;
   double total_seconds = 0;
+  nlohmann::json grid_convergence;  // reference grid and Richardson estimates (null when none ran)
 };
 
 nlohmann::json make_summary(const ReportInputs& in);
 void write_report(const ReportInputs& in, const nlohmann::json& summary);
+
+// One line for the terminal: the verdict with its interval.
+std::string verdict_line(const nlohmann::json& summary);
 
 }  // namespace pipeline

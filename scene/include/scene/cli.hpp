@@ -14,6 +14,8 @@ void clear_interrupt();  // tests
 // stderr and the contract's exit codes (InputError 2, RunError 1, other 1).
 int run_guarded(const std::string& program, const std::function<int()>& body);
 
+// The release number and a hash of the sources it was built from
+// (e.g. 0.1.0+3f9a0c1b2d4e): caches made by other code are never reused.
 std::string version_string();
 
 }  // namespace scene

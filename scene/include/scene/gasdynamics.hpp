@@ -16,6 +16,12 @@ double oblique_density_ratio(double mach, double beta, double gamma);
 // Mach number behind an oblique shock of angle beta and deflection theta.
 double oblique_downstream_mach(double mach, double beta, double theta, double gamma);
 
+// Stagnation-point pressure of a blunt body over the free-stream static
+// pressure (Rayleigh pitot formula): a normal shock, then isentropic
+// compression to rest. Exact for inviscid flow; M <= 1 gives the isentropic
+// stagnation pressure.
+double rayleigh_pitot_ratio(double mach, double gamma);
+
 // Billig (1967) correlations, gamma = 1.4. Standoff over nose radius, and the
 // shock curvature radius over nose radius.
 double billig_standoff_cylinder(double mach);   // 0.386 exp(4.67/M^2)

@@ -1,0 +1,61 @@
+#pragma once
+// The verdict of `pipeline run`: does the grid clustered at the predicted
+// shock reach the uniform family's accuracy in less CPU time? Each family's
+// primary error is fitted against CPU cost (log-log, equal_error.hpp) and
+// the cost ratio read at the clustered family's finest error, with a 95%
+// interval; "faster"/"slower" only when the interval excludes 1.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/equal_error.hpp"
+#include "scene/scene.hpp"
+
+namespace pipeline {
+
+// The error that drives the verdict for a scene, and why.
+struct PrimaryError {
+  std::string name;       // l1_density | stagnation_pressure
+  std::string reference;  // how the reference value is obtained
+  std::string why;        // one sentence for the report
+};
+PrimaryError primary_error_for(const scene::Scene& s);
+
+// One grid's costs and primary error, as the verdict needs them.
+struct VerdictRun {
+  std::string family;     // clustered | uniform
+  double level = 1;
+  long cells = 0;
+  double cfd_cpu = 0;     // solver CPU seconds (all ranks)
+  double mesh_cpu = 0;    // gmsh + gmshToFoam + checkMesh CPU seconds
+  double error = 0;       // primary error
+  double error_ci = 0;    // its 95% half-width
+  bool steady = false;
+};
+
+struct FamilyFitInfo {
+  LogLogFit cfd, total;   // error against CFD CPU, and against total CPU
+  int used = 0;           // runs in the fit
+  std::vector<std::string> excluded;  // "uniform_h4: not steady", ...
+};
+
+struct Verdict {
+  PrimaryError primary;
+  double target_error = 0;      // the clustered family's finest usable error
+  bool extrapolated = false;    // target outside the uniform family's error range
+  Interval speedup_cfd, speedup_total;
+  std::string verdict = "not distinguishable";      // on total CPU (predictor and meshing counted)
+  std::string verdict_cfd = "not distinguishable";  // on CFD CPU alone
+  double predictor_cpu = 0;
+  FamilyFitInfo clustered, uniform;
+  std::string note;             // why no verdict could be given, when none
+};
+
+Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,
+                     const std::vector<VerdictRun>& uniform, double predictor_cpu);
+
+nlohmann::json interval_json(const Interval& i);
+nlohmann::json verdict_json(const Verdict& v);
+
+}  // namespace pipeline

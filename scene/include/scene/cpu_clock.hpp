@@ -1,0 +1,31 @@
+#pragma once
+// CPU seconds (user + system) spent by this process's threads and by its
+// finished, waited-for child processes (an OpenFOAM solver and, through
+// mpirun, every rank). Costs are compared in CPU seconds because wall
+// seconds move with the load of a shared machine.
+#include <sys/resource.h>
+
+namespace scene {
+
+inline double cpu_seconds_now() {
+  auto sum = [](int who) {
+    rusage u{};
+    getrusage(who, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  };
+  return sum(RUSAGE_SELF) + sum(RUSAGE_CHILDREN);
+}
+
+// CPU seconds since construction; valid for work done in sequence (a child
+// counts once it has been waited for).
+class CpuStopwatch {
+ public:
+  CpuStopwatch() : start_(cpu_seconds_now()) {}
+  double seconds() const { return cpu_seconds_now() - start_; }
+
+ private:
+  double start_;
+};
+
+}  // namespace scene

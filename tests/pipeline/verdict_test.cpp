@@ -1,0 +1,164 @@
+// The verdict's arithmetic: equal-error cost ratios with intervals, the
+// cheapest-cost reading of a family, Richardson extrapolation and the exact
+// cell-average L1 measure on cells cut by a known line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "pipeline/equal_error.hpp"
+#include "pipeline/error_measures.hpp"
+#include "pipeline/grid_convergence.hpp"
+
+namespace {
+using pipeline::CostError;
+
+// error = k cost^b exactly.
+std::vector<CostError> power_law(double k, double b, std::vector<double> costs, double rel_ci = 0) {
+  std::vector<CostError> out;
+  for (const double c : costs) {
+    const double e = k * std::pow(c, b);
+    out.push_back({c, e, rel_ci * e});
+  }
+  return out;
+}
+
+TEST(EqualError, CheapestRunAlreadyAccurateIsNotInterpolated) {
+  // A cheaper run already meets the error: its cost, not an interpolation
+  // across the first bracketing pair (which gave 2x instead of 1x).
+  const std::vector<CostError> u{{1, 0.05, 0}, {4, 0.2, 0}, {16, 0.01, 0}};
+  EXPECT_DOUBLE_EQ(pipeline::cheapest_cost_at(u, 0.1), 1.0);
+  // Order of the input does not matter.
+  const std::vector<CostError> shuffled{{16, 0.01, 0}, {1, 0.05, 0}, {4, 0.2, 0}};
+  EXPECT_DOUBLE_EQ(pipeline::cheapest_cost_at(shuffled, 0.1), 1.0);
+  // Only the finest reaches 0.02: log-log between the 4 s and 16 s runs.
+  const double c = pipeline::cheapest_cost_at(u, 0.02);
+  const double t = std::log(0.02 / 0.2) / std::log(0.01 / 0.2);
+  EXPECT_NEAR(c, std::exp(std::log(4.0) + t * std::log(4.0)), 1e-12);
+  EXPECT_TRUE(std::isnan(pipeline::cheapest_cost_at(u, 0.001)));
+}
+
+TEST(EqualError, FitRecoversPowerLaw) {
+  const auto f = pipeline::fit_log_log(power_law(2.0, -0.75, {1, 3, 10, 30, 100}));
+  ASSERT_TRUE(f.ok);
+  EXPECT_NEAR(f.b, -0.75, 1e-12);
+  EXPECT_NEAR(f.a, std::log(2.0), 1e-12);
+  EXPECT_NEAR(f.residual_sd, 0.0, 1e-12);
+  EXPECT_NEAR(std::exp(f.log_cost_at(2.0 * std::pow(10.0, -0.75))), 10.0, 1e-9);
+  EXPECT_FALSE(pipeline::fit_log_log(power_law(2.0, -0.75, {1, 3})).ok) << "two runs leave no residual";
+}
+
+TEST(EqualError, ExactFamiliesGiveTheExactRatioAndAPointInterval) {
+  // Same slope, the fast family reaches every error at 1/5 of the cost.
+  const auto slow = power_law(1.0, -0.5, {10, 40, 160, 640});
+  const auto fast = power_law(std::pow(5.0, -0.5), -0.5, {2, 8, 32, 128});
+  const auto r = pipeline::cost_ratio_at_error(slow, fast, 0.05);
+  EXPECT_NEAR(r.value, 5.0, 1e-9);
+  EXPECT_NEAR(r.ci_low, 5.0, 1e-6);
+  EXPECT_NEAR(r.ci_high, 5.0, 1e-6);
+  EXPECT_EQ(pipeline::verdict_of(r), "faster");
+  EXPECT_EQ(pipeline::verdict_of(pipeline::cost_ratio_at_error(fast, slow, 0.05)), "slower");
+}
+
+TEST(EqualError, ScatterWidensTheIntervalAroundTheTruth) {
+  // Residual scatter of ~10% on a 3x ratio: interval contains 3, lies above 1.
+  auto slow = power_law(1.0, -0.5, {10, 20, 40, 80, 160});
+  auto fast = power_law(std::pow(3.0, -0.5), -0.5, {2, 4, 8, 16, 32});
+  const double wiggle[] = {1.1, 0.92, 1.05, 0.95, 1.08};
+  for (int k = 0; k < 5; ++k) {
+    slow[k].error *= wiggle[k];
+    fast[k].error *= wiggle[4 - k];
+  }
+  const auto r = pipeline::cost_ratio_at_error(slow, fast, 0.1);
+  EXPECT_LT(r.ci_low, 3.0);
+  EXPECT_GT(r.ci_high, 3.0);
+  EXPECT_LT(r.ci_low, r.value);
+  EXPECT_GT(r.ci_high, r.value);
+  EXPECT_EQ(pipeline::verdict_of(r), "faster");
+  // Reproducible: the Monte Carlo is seeded.
+  const auto again = pipeline::cost_ratio_at_error(slow, fast, 0.1);
+  EXPECT_EQ(r.ci_low, again.ci_low);
+  EXPECT_EQ(r.ci_high, again.ci_high);
+}
+
+TEST(EqualError, OverlappingNoisyFamiliesAreNotDistinguishable) {
+  auto a = power_law(1.0, -0.5, {10, 20, 40, 80});
+  auto b = power_law(1.05, -0.5, {10, 20, 40, 80});
+  const double wiggle[] = {1.3, 0.75, 1.25, 0.8};
+  for (int k = 0; k < 4; ++k) a[k].error *= wiggle[k];
+  const auto r = pipeline::cost_ratio_at_error(a, b, 0.15);
+  EXPECT_LT(r.ci_low, 1.0);
+  EXPECT_GT(r.ci_high, 1.0);
+  EXPECT_EQ(pipeline::verdict_of(r), "not distinguishable");
+}
+
+TEST(EqualError, RunErrorIntervalsWidenTheInterval) {
+  const auto slow = power_law(1.0, -0.5, {10, 40, 160, 640});
+  const auto fast = power_law(std::pow(5.0, -0.5), -0.5, {2, 8, 32, 128}, 0.3);
+  const auto r = pipeline::cost_ratio_at_error(slow, fast, 0.05);
+  EXPECT_LT(r.ci_low, 4.5);
+  EXPECT_GT(r.ci_high, 5.5);
+}
+
+TEST(EqualError, UnusableFamilyGivesNoVerdict) {
+  const auto slow = power_law(1.0, -0.5, {10, 40});
+  const auto fast = power_law(1.0, -0.5, {2, 8, 32});
+  const auto r = pipeline::cost_ratio_at_error(slow, fast, 0.05);
+  EXPECT_TRUE(std::isnan(r.value));
+  EXPECT_EQ(pipeline::verdict_of(r), "not distinguishable");
+}
+
+TEST(GridConvergence, RichardsonRecoversOrderAndLimit) {
+  // f(h) = 2 + 0.3 h^1.7, h = 1, 2, 4.
+  auto f = [](double h) { return 2.0 + 0.3 * std::pow(h, 1.7); };
+  const auto g = pipeline::richardson(f(1), f(2), f(4), 2.0);
+  ASSERT_TRUE(g.monotone);
+  EXPECT_NEAR(g.order, 1.7, 1e-12);
+  EXPECT_NEAR(g.extrapolated, 2.0, 1e-12);
+  // GCI = 1.25 |f1 - f2| / |f1| / (r^p - 1).
+  EXPECT_NEAR(g.gci_fine, 1.25 * std::abs(f(1) - f(2)) / f(1) / (std::pow(2.0, 1.7) - 1.0), 1e-12);
+}
+
+TEST(GridConvergence, OscillatoryAndDivergentTriplesAreReportedNotForced) {
+  const auto osc = pipeline::richardson(1.0, 1.1, 1.05, 2.0);
+  EXPECT_FALSE(osc.monotone);
+  EXPECT_TRUE(std::isnan(osc.extrapolated));
+  EXPECT_NE(osc.note.find("oscillatory"), std::string::npos);
+  const auto div = pipeline::richardson(1.0, 1.1, 1.15, 2.0);
+  EXPECT_FALSE(div.monotone);
+  EXPECT_NE(div.note.find("divergent"), std::string::npos);
+}
+
+TEST(ErrorMeasures, AreaBehindLineOfACutSquare) {
+  const std::vector<scene::Vec2> sq{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const double b = std::numbers::pi / 4;  // line y = x
+  const scene::Vec2 n{-std::sin(b), std::cos(b)};
+  EXPECT_NEAR(pipeline::area_behind_line(sq, n), 0.5, 1e-15);
+  // Clockwise input, same area; a square wholly ahead of the line, none.
+  const std::vector<scene::Vec2> cw{{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  EXPECT_NEAR(pipeline::area_behind_line(cw, n), 0.5, 1e-15);
+  const std::vector<scene::Vec2> above{{0, 2}, {1, 2}, {1, 3}, {0, 3}};
+  EXPECT_NEAR(pipeline::area_behind_line(above, n), 0.0, 1e-15);
+  // Line y = x/2 cuts the unit square: the triangle below has area 1/4.
+  const double b2 = std::atan(0.5);
+  EXPECT_NEAR(pipeline::area_behind_line(sq, {-std::sin(b2), std::cos(b2)}), 0.25, 1e-15);
+}
+
+TEST(ErrorMeasures, PiecewiseL1OnAMeshCutByAKnownLine) {
+  // Two unit cells side by side; the line y = x/2 cuts both. Cell 0 (x in
+  // [0,1]) has 1/4 behind, cell 1 (x in [1,2]) has 3/4 behind.
+  cfd::Mesh2D m;
+  m.cell_polygons = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {{1, 0}, {2, 0}, {2, 1}, {1, 1}}};
+  m.cell_area = {1, 1};
+  m.cell_centre = {{0.5, 0.5}, {1.5, 0.5}};
+  const double b = std::atan(0.5), ahead = 1.4, behind = 3.0;
+  // The exact cell averages give zero error.
+  const std::vector<double> exact{ahead + 0.25 * (behind - ahead), ahead + 0.75 * (behind - ahead)};
+  EXPECT_NEAR(pipeline::piecewise_l1(m, exact, b, ahead, behind, ahead), 0.0, 1e-14);
+  // A field at the free-stream value everywhere: error = mean jump share.
+  const std::vector<double> flat{ahead, ahead};
+  const double want = (0.25 + 0.75) * (behind - ahead) / (2.0 * ahead);
+  EXPECT_NEAR(pipeline::piecewise_l1(m, flat, b, ahead, behind, ahead), want, 1e-14);
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "pipeline/league.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -31,6 +32,24 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "all"}));
     run->add_option("--calibration", calibration, "restitution table (default: pipeline/calibration.yaml)");
     run->add_flag("--dry-run", dry_run, "validate the scene, print it resolved, and stop");
+    std::string predictor = "granular";
+    run->add_option("--predictor", predictor, "shock predictor: granular, correlation, coarse_cfd");
+
+    auto* predict = app.add_subcommand("predict", "the shock predictor alone: shock.csv, summary.json, shock.png");
+    pipeline::PredictOptions po;
+    predict->add_option("scene", scene_path, "scene YAML")->required();
+    predict->add_option("--predictor", po.predictor, "granular, correlation, coarse_cfd")->required();
+    predict->add_option("--out", po.out_dir, "output directory")->required();
+    predict->add_option("--np", po.np, "processes")->check(CLI::PositiveNumber);
+    predict->add_option("--calibration", po.calibration_path, "restitution table (granular)");
+
+    auto* league = app.add_subcommand("league", "every predictor against the uniform family, per scene (docs/league.md)");
+    pipeline::LeagueOptions lo;
+    league->add_option("scenes", lo.scenes, "scenes (default: the case studies)");
+    league->add_option("--out", lo.out_dir, "output directory")->required();
+    league->add_option("--predictor", lo.predictors, "predictors (default: all)");
+    league->add_option("--docs", lo.docs_page, "page to write (default: docs/league.md)");
+    league->add_option("--np", lo.np, "processes")->check(CLI::PositiveNumber);
 
     auto* sweep = app.add_subcommand("sweep", "granular + shockfit over a parameter grid");
     std::vector<std::string> vary;
@@ -72,9 +91,19 @@ int main(int argc, char** argv) {
       o.np = np;
       o.force = {force.begin(), force.end()};
       o.calibration_path = calibration;
+      o.predictor = predictor;
       const auto summary = pipeline::run_pipeline(s, o);
       std::cout << summary.dump(2) << "\n";
       std::cout << pipeline::verdict_line(summary) << "\n";
+      return 0;
+    }
+    if (predict->parsed()) {
+      const auto j = pipeline::run_predict(scene::load_scene(scene_path), po);
+      std::cout << j.dump(2) << "\n";
+      return 0;
+    }
+    if (league->parsed()) {
+      pipeline::run_league(lo);
       return 0;
     }
     if (sweep->parsed()) {

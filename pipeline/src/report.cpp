@@ -132,7 +132,7 @@ void cost_figures(const ReportInputs& in, const std::string& fig) {
                true, true, {}, {}};
   for (const auto* fam : {&c.uniform, &c.clustered}) {
     const bool clustered = fam == &c.clustered;
-    const std::string title = clustered ? "clustered at the predicted shock" : "uniform";
+    const std::string title = clustered ? "clustered (" + in.prediction.predictor + ")" : "uniform";
     Series sc, st;
     sc.title = st.title = title;
     std::vector<double> xc, xt;
@@ -174,7 +174,8 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
   const std::string dir = in.out_dir;
   const auto& c = in.comparison;
   const bool angle = in.reference.quantity == "shock_angle_deg";
-  const auto granular_pts = accepted_points(dir + "/shockfit/shock.csv", w);
+  const auto& granular_pts = in.prediction.curve;
+  const std::string predicted = "predicted (" + in.prediction.predictor + ")";
   std::vector<scene::Vec2> cfd_pts;
   std::string cfd_name;
   if (c.clustered_pick >= 0) {
@@ -191,7 +192,7 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
     }
   }
   const std::string gvti = dir + "/granular/fields.vti";
-  if (fs::exists(gvti)) {
+  if (in.prediction.predictor == "granular" && fs::exists(gvti)) {
     try {
       const auto lat = scene::read_vti(gvti);
       field_png(lat, "volume_fraction", "Granular volume fraction with the fitted shock",
@@ -206,8 +207,8 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
   if (!cfd_name.empty()) {
     try {
       const auto lat = scene::read_vti(dir + "/cfd/" + cfd_name + "/fields.vti");
-      field_png(lat, "mach", "Shocks over the clustered CFD Mach field: granular, CFD and exact",
-                {{"granular", granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
+      field_png(lat, "mach", "Shocks over the clustered CFD Mach field: predicted, CFD and exact",
+                {{predicted, granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
                  {"CFD (clustered)", cfd_pts, "points pt 4 ps 0.8 lc rgb 'black'"},
                  {"exact", exact, "lines lw 2 dt 2 lc rgb 'magenta'"}},
                 fig + "/shocks_compared.png");
@@ -316,28 +317,23 @@ nlohmann::json make_summary(const ReportInputs& in) {
   const auto& ref = in.reference;
   nlohmann::json j;
   j["scene"] = in.scene.name;
-  j["predictor"] = "granular";
   j["reference"] = {{"quantity", ref.quantity}, {"source", ref.source}, {"value", ref.value},
                     {"pressure_ratio", ref.pressure_ratio}};
   j["clustered"] = c.clustered_pick >= 0 ? run_object(c.clustered[c.clustered_pick], ref) : nlohmann::json(nullptr);
   j["uniform"] = c.uniform_pick >= 0 ? run_object(c.uniform[c.uniform_pick], ref) : nlohmann::json(nullptr);
   if (c.uniform_pick >= 0) j["uniform"]["as_accurate_as_clustered"] = c.uniform_matches;
-  const auto& p = in.prediction;
-  nlohmann::json g = {{"shock", p.value("shock", "none")}, {"wall_seconds", p.value("granular_wall_seconds", kNaN)},
-                      {"cpu_seconds", p.value("predictor_cpu_seconds", kNaN)},
-                      {"restitution", in.scene.granular.restitution}};
+  const Prediction& p = in.prediction;
+  nlohmann::json g = p.summary();
+  g["wall_seconds"] = p.wall_seconds;
+  if (p.predictor == "granular") g["restitution"] = in.scene.granular.restitution;
   if (ref.quantity == "shock_angle_deg") {
-    const double a = p.contains("shock_angle_deg") && p["shock_angle_deg"].is_number() ? p["shock_angle_deg"].get<double>() : kNaN;
-    g["shock_angle_deg"] = a;
-    g["shock_angle_ci_deg"] = p.value("shock_angle_ci_deg", nlohmann::json(nullptr));
-    g["error_deg"] = std::abs(a - ref.value);
+    g["error_deg"] = std::abs(p.shock_angle_deg - ref.value);
   } else {
-    const double sd = p.contains("standoff") && p["standoff"].is_number() ? p["standoff"].get<double>() : kNaN;
-    g["standoff"] = sd;
-    g["standoff_ci"] = p.value("standoff_ci", nlohmann::json(nullptr));
-    g["relative_error"] = std::abs(sd - ref.value) / ref.value;
+    g["relative_error"] = std::abs(p.standoff - ref.value) / ref.value;
   }
-  j["granular"] = g;
+  j["prediction"] = g;
+  j["granular"] = g;  // the older key, kept for scripts
+  j["predictor"] = p.predictor;
   const auto& v = in.verdict;
   j["primary_error"] = v.primary.name;
   j["speedup_cfd"] = interval_json(v.speedup_cfd);
@@ -365,14 +361,20 @@ std::string verdict_line(const nlohmann::json& summary) {
   const auto& t = summary["speedup_total"];
   const auto& c = summary["speedup_cfd"];
   std::ostringstream os;
+  // An unbounded interval end is written as null in JSON.
+  auto hi = [&](const nlohmann::json& o) {
+    return o.contains("ci_high") && o["ci_high"].is_null() && std::isfinite(num(o, "value"))
+               ? std::numeric_limits<double>::infinity()
+               : num(o, "ci_high");
+  };
   os << summary.value("scene", "") << ": " << summary.value("verdict", "not distinguishable") << " — total CPU "
-     << interval_text({num(t, "value"), num(t, "ci_low"), num(t, "ci_high")}) << ", CFD CPU "
-     << interval_text({num(c, "value"), num(c, "ci_low"), num(c, "ci_high")}) << " at equal "
+     << interval_text({num(t, "value"), num(t, "ci_low"), hi(t)}) << ", CFD CPU "
+     << interval_text({num(c, "value"), num(c, "ci_low"), hi(c)}) << " at equal "
      << summary.value("primary_error", "error");
   return os.str();
 }
 
-void write_report(const ReportInputs& in, const nlohmann::json& summary) {
+void write_report(const ReportInputs& in, const nlohmann::json& summary, const std::string& file_name) {
   const std::string dir = in.out_dir;
   const std::string fig = dir + "/figures";
   fs::create_directories(fig);
@@ -384,7 +386,8 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
   field_figures(in, fig, warnings);
 
   std::ostringstream md;
-  md << "# " << in.scene.name << ": granular-predicted grid against uniform grids\n\n";
+  md << "# " << in.scene.name << ": grid clustered at the " << in.prediction.predictor
+     << " prediction against uniform grids\n\n";
   md << "Generated by `pipeline run`. Costs are CPU seconds (user + system, solver ranks and "
         "meshing tools included; wall seconds beside them), one run per grid; the intervals come from the "
         "families' fits. Shock reference: "
@@ -393,14 +396,14 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
      << ").\n\n";
   if (!in.calibration_note.empty()) md << "Calibration: " << in.calibration_note << ".\n\n";
   verdict_section(md, in);
-  const auto& g = summary["granular"];
-  md << "Granular prediction: shock " << g.value("shock", "none") << ", ";
+  const auto& g = summary["prediction"];
+  md << "Prediction (" << in.prediction.predictor << "): shock " << g.value("shock", "none") << ", ";
   if (angle) md << "angle " << fmt(g.value("shock_angle_deg", kNaN), 4) << " deg (error " << fmt(g.value("error_deg", kNaN), 3) << " deg)";
   else md << "standoff " << fmt(g.value("standoff", kNaN), 4) << " (relative error " << fmt(g.value("relative_error", kNaN), 3) << ")";
   md << ", CPU " << fmt(g.value("cpu_seconds", kNaN), 3) << " s (wall " << fmt(g.value("wall_seconds", kNaN), 3)
      << " s).";
   if (angle && std::abs(g.value("error_deg", 0.0)) > 1.0)
-    md << " **The granular shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
+    md << " **The predicted shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
   md << "\n\n";
   runs_table(md, in);
   convergence_section(md, in.grid_convergence);
@@ -421,7 +424,7 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
   img("error_vs_cells.png", "Primary error against cells");
   img("granular_volume_fraction.png", "Granular volume fraction with the fitted shock");
   img("granular_velocity.png", "Granular velocity u");
-  img("shocks_compared.png", "Granular, CFD and exact shocks");
+  img("shocks_compared.png", "Predicted, CFD and exact shocks");
   for (const auto* fam : {&c.uniform, &c.clustered})
     for (const auto& r : *fam) {
       const std::string buf = grid_name(r);
@@ -434,7 +437,7 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary) {
         "interval (the steady state's flicker), ± on the shock is the 95% interval of the shock located on the CFD "
         "solution.\n\n";
   md << "Total pipeline wall time: " << fmt(in.total_seconds, 4) << " s (cached stages cost nothing).\n";
-  scene::write_file_atomic(dir + "/report.md", md.str());
+  scene::write_file_atomic(dir + "/" + file_name, md.str());
 }
 
 }  // namespace pipeline

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/compare.hpp"
+#include "pipeline/predictor.hpp"
 #include "pipeline/verdict.hpp"
 #include "scene/scene.hpp"
 
@@ -13,7 +14,7 @@ namespace pipeline {
 struct ReportInputs {
   const scene::Scene& scene;
   std::string out_dir;
-  nlohmann::json prediction;  // run_prediction's result
+  Prediction prediction;
   Reference reference;
   Comparison comparison;
   Verdict verdict;
@@ -23,7 +24,7 @@ struct ReportInputs {
 };
 
 nlohmann::json make_summary(const ReportInputs& in);
-void write_report(const ReportInputs& in, const nlohmann::json& summary);
+void write_report(const ReportInputs& in, const nlohmann::json& summary, const std::string& file_name = "report.md");
 
 // One line for the terminal: the verdict with its interval.
 std::string verdict_line(const nlohmann::json& summary);

@@ -1,6 +1,8 @@
 #pragma once
-// `pipeline run`: granular -> shockfit -> meshgen (clustered and uniform
-// families) -> rhoCentralFoam on each grid -> comparison and report.
+// `pipeline run`: a shock predictor (granular gas + shockfit by default) ->
+// meshgen (clustered and uniform families) -> rhoCentralFoam on each grid ->
+// verdict and report.
+#include <optional>
 #include <set>
 #include <string>
 
@@ -15,6 +17,10 @@ struct RunOptions {
   int np = 1;                       // MPI ranks for granular replicas and OpenFOAM
   std::set<std::string> force;      // stages to rerun: granular, shockfit, meshgen, cfd, report, all
   std::string calibration_path;     // restitution table ("" = scene's or built-in)
+  std::string predictor = "granular";  // predictor.hpp's registry
+  // summary<suffix>.json and report<suffix>.md: the league keeps one per
+  // predictor beside the shared grids. Default: "" for granular, else _<name>.
+  std::optional<std::string> output_suffix;
 };
 
 // Applies the calibration table when the scene leaves granular.restitution
@@ -28,6 +34,12 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o);
 // merged with granular's wall time.
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np,
                               bool force = false);
+
+// The named predictor's shock for the scene, its stages cached under
+// out_dir (granular: out_dir itself; others: out_dir/predict/<name>).
+struct Prediction;
+Prediction predict_shock(const scene::Scene& s, const std::string& predictor, const std::string& out_dir, int np,
+                         bool force = false);
 
 // Path of the built-in calibration table (pipeline/calibration.yaml in the source tree).
 std::string builtin_calibration_path();

@@ -1,0 +1,58 @@
+#pragma once
+// One grid of a family, from mesh to measured error: gmsh (clustered at a
+// predicted shock, or uniform), rhoCentralFoam to steady state, the CFD
+// shock located by shockfit, the exact-reference errors. Each step is a
+// cached stage under the run's directory, with its CPU seconds recorded.
+#include <functional>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/compare.hpp"
+#include "pipeline/stage_cache.hpp"
+#include "pipeline/verdict.hpp"
+#include "scene/scene.hpp"
+
+namespace pipeline {
+
+// What clustered grids need of a prediction.
+struct ShockInput {
+  std::string fingerprint;  // clustered grids are remade when it changes
+  std::string shock_csv;
+  bool has_shock = false;
+};
+
+class GridRunner {
+ public:
+  // `force`: stages to rerun (meshgen, cfd, all). `on_step` hears each
+  // finished mesh and solve (progress).
+  GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,
+             std::function<void(const std::string&)> on_step = {});
+
+  // family: "uniform", "reference" (uniform, in neither family) or
+  // "clustered..." (around `shock`). Meshes, and unless the scene's
+  // pipeline.cfd is false, solves, locates the CFD shock and measures.
+  GridRun run(const std::string& family, double level, const ShockInput& shock, const PrimaryError& primary);
+
+  // The stage directory of a grid's CFD case and mesh.
+  std::string case_dir(const std::string& family, double level) const;
+  std::string mesh_dir(const std::string& family, double level) const;
+
+ private:
+  nlohmann::json mesh(const std::string& family, double level, const ShockInput& shock);
+  nlohmann::json solve(const std::string& name, const std::string& fp_mesh);
+  nlohmann::json locate(const std::string& name, double level, const std::string& fp_cfd);
+  void measure(const std::string& name, const PrimaryError& primary, GridRun& run) const;
+  bool forced(const std::string& stage) const;
+
+  const scene::Scene& s_;
+  StageCache cache_;
+  int np_;
+  std::set<std::string> force_;
+  std::function<void(const std::string&)> on_step_;
+};
+
+std::string level_name(const std::string& family, double level);
+
+}  // namespace pipeline

@@ -1,0 +1,67 @@
+#pragma once
+// Shock predictors behind one interface, chosen by name: each places the
+// shock a clustered grid is built around, with a per-point 95% half-width
+// and its CPU cost. meshgen takes only the curve and its interval
+// (shock.csv), whatever produced it.
+//   granular    the granular gas and shockfit's two-line fits (the project's method)
+//   correlation theta-beta-Mach for attached wedges (exact), Billig's
+//               cylinder shock for other bodies (an empirical approximation)
+//   coarse_cfd  a coarse uniform CFD run to steady state, located by shockfit
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.hpp"
+#include "scene/vec2.hpp"
+
+namespace pipeline {
+
+enum class ShockKind { attached, detached, none };
+std::string to_string(ShockKind k);
+ShockKind shock_kind_from(const std::string& text);  // attached | detached | anything else: none
+
+struct Prediction {
+  std::string predictor;
+  ShockKind kind = ShockKind::none;
+  std::vector<scene::Vec2> curve;  // accepted shock points in order (scene coordinates)
+  std::vector<double> half_width;  // 95% half-width along the shock normal per point (body lengths)
+  double shock_angle_deg = std::numeric_limits<double>::quiet_NaN();
+  double shock_angle_ci_deg = std::numeric_limits<double>::quiet_NaN();
+  double standoff = std::numeric_limits<double>::quiet_NaN();  // body lengths
+  double standoff_ci = std::numeric_limits<double>::quiet_NaN();
+  double cpu_seconds = 0, wall_seconds = 0;
+  std::string shock_csv;     // the curve as written for meshgen
+  std::string fingerprint;   // changes whenever the prediction would
+  nlohmann::json details = nlohmann::json::object();  // predictor-specific figures
+  // `predictor`, `shock`, angle or standoff with its interval, `cpu_seconds`, details.
+  nlohmann::json summary() const;
+};
+
+struct PredictContext {
+  const scene::Scene& scene;
+  std::string out_dir;  // the predictor's own directory (cached stages live below it)
+  std::string run_dir;  // the pipeline run's directory: CFD grids shared with the families live there
+  int np = 1;
+  bool force = false;   // recompute cached stages
+};
+
+class Predictor {
+ public:
+  virtual ~Predictor() = default;
+  virtual std::string name() const = 0;
+  virtual Prediction predict(const PredictContext& cx) const = 0;
+};
+
+std::vector<std::string> predictor_names();
+// InputError naming the predictors there are for an unknown name.
+std::unique_ptr<Predictor> make_predictor(const std::string& name);
+
+// The one shock.csv writer for predictors that do not run shockfit: header
+// shock_x, shock_y, ci, accepted; every point accepted.
+void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
+                       const std::vector<double>& half_width);
+
+}  // namespace pipeline

@@ -1,0 +1,194 @@
+#include "pipeline/grid_runs.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "cfd/run_case.hpp"
+#include "meshgen/mesh.hpp"
+#include "pipeline/error_measures.hpp"
+#include "scene/cli.hpp"
+#include "scene/cpu_clock.hpp"
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+#include "scene/lattice.hpp"
+#include "scene/progress.hpp"
+#include "shockfit/locate.hpp"
+
+namespace pipeline {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
+void check_interrupt(const std::string& where) {
+  if (scene::interrupted())
+    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
+}
+
+bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
+
+// rhoCentralFoam with a limited reconstruction spreads a shock over about
+// this many cells; the shock window (half-width) spans this many shock widths.
+constexpr double kCfdShockCells = 3.0;
+constexpr double kWindowPerShockWidth = 1.25;
+
+scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
+  scene::Scene c = s;
+  const scene::Domain d = scene::scene_domain(s);
+  const double dx = std::max(d.width() / s.granular.lattice_nx, d.height() / s.granular.lattice_ny);
+  c.shockfit.window = std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
+  c.shockfit.min_samples = 0;  // CFD lattices carry no sample counts
+  return c;
+}
+
+double shock_value(const shockfit::ShockResult& r) {
+  if (r.shock == "attached") return r.shock_angle_deg;
+  if (r.shock == "detached") return r.standoff;
+  return kNaN;
+}
+double shock_ci(const shockfit::ShockResult& r) {
+  if (r.shock == "attached") return r.shock_angle_ci_deg;
+  if (r.shock == "detached") return r.standoff_ci;
+  return kNaN;
+}
+
+}  // namespace
+
+std::string level_name(const std::string& family, double level) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%s_h%g", family.c_str(), level);
+  return buf;
+}
+
+GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,
+                       std::function<void(const std::string&)> on_step)
+    : s_(s), cache_(out_dir), np_(np), force_(std::move(force)), on_step_(std::move(on_step)) {}
+
+bool GridRunner::forced(const std::string& stage) const { return force_.count(stage) != 0 || force_.count("all") != 0; }
+
+std::string GridRunner::case_dir(const std::string& family, double level) const {
+  return cache_.dir("cfd/" + level_name(family, level));
+}
+std::string GridRunner::mesh_dir(const std::string& family, double level) const {
+  return cache_.dir("meshgen/" + level_name(family, level));
+}
+
+// Meshed and cached; meshgen's summary gains the stage's CPU seconds (gmsh
+// in-process, gmshToFoam and checkMesh as children).
+nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock) {
+  const bool clustered = is_clustered(family);
+  const std::string stage = "meshgen/" + level_name(family, level);
+  const std::string fp = fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
+                                      scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
+                                      clustered ? "clustered" : "uniform", std::to_string(level)});
+  if (forced("meshgen")) cache_.invalidate(stage);
+  if (cache_.fresh(stage, fp)) return cache_.result(stage);
+  cache_.invalidate(stage);
+  meshgen::MeshRequest req = clustered ? meshgen::request_from_shock_csv(shock.shock_csv) : meshgen::MeshRequest{};
+  req.uniform = !clustered;
+  req.h_min = s_.mesh.h_min * level;
+  req.h_max = clustered ? s_.mesh.h_max * level : s_.mesh.h_min * level;
+  const scene::CpuStopwatch cpu;
+  const auto m = meshgen::generate_mesh(s_, req, cache_.dir(stage));
+  nlohmann::json msum = m.summary();
+  msum["seconds"] = m.seconds;
+  msum["stage_cpu_seconds"] = cpu.seconds();
+  msum["fingerprint"] = fp;
+  cache_.mark_done(stage, fp, msum);
+  return msum;
+}
+
+// rhoCentralFoam to a measured steady state, cached; the summary gains the
+// solver's CPU seconds (all ranks, as waited-for children).
+nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_mesh) {
+  const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
+  const std::string fp = fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
+  if (forced("cfd")) cache_.invalidate(cstage);
+  if (cache_.fresh(cstage, fp)) return cache_.result(cstage);
+  cache_.invalidate(cstage);
+  cfd::CaseOptions co;
+  co.np = np_;
+  const scene::CpuStopwatch cpu;
+  const auto c = cfd::run_case(s_, cache_.dir(mstage), cache_.dir(cstage), co);
+  const double solver_cpu = cpu.seconds();
+  check_interrupt("cfd " + name);
+  const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx, s_.granular.lattice_ny);
+  scene::write_vti(lat, cache_.dir(cstage) + "/fields.vti");
+  nlohmann::json csum = c.summary();
+  csum["stage_cpu_seconds"] = solver_cpu;
+  csum["fingerprint"] = fp;
+  cache_.mark_done(cstage, fp, csum);
+  return csum;
+}
+
+// The CFD shock, located like the granular one with the shock window
+// widened to the grid's smeared shock (same rule for every family).
+nlohmann::json GridRunner::locate(const std::string& name, double level, const std::string& fp_cfd) {
+  const std::string cstage = "cfd/" + name, fstage = cstage + "/shockfit";
+  const scene::Scene fs_scene = cfd_shockfit_scene(s_, level * s_.mesh.h_min);
+  const std::string fp = fingerprint({fp_cfd, scene::section_yaml(fs_scene, "shockfit")});
+  if (!forced("cfd") && cache_.fresh(fstage, fp)) return cache_.result(fstage);
+  cache_.invalidate(fstage);
+  const auto lat = scene::read_vti(cache_.dir(cstage) + "/fields.vti");
+  const auto sh = shockfit::locate_shock(fs_scene, lat);
+  shockfit::write_outputs(fs_scene, lat, sh, cache_.dir(fstage));
+  nlohmann::json fsum = sh.summary();
+  fsum["shock_value"] = shock_value(sh);
+  fsum["shock_value_ci"] = shock_ci(sh);
+  cache_.mark_done(fstage, fp, fsum);
+  return fsum;
+}
+
+// A failure to measure is not silent: it becomes the run's note, shown in the report.
+void GridRunner::measure(const std::string& name, const PrimaryError& primary, GridRun& run) const {
+  try {
+    const CaseErrors e = measure_case_errors(s_, cache_.dir("cfd/" + name));
+    run.l1_density = e.l1_density.value;
+    run.l1_density_ci = e.l1_density.uncertainty;
+    run.l1_pressure = e.l1_pressure.value;
+    run.stagnation_pressure_ratio = e.stagnation_pressure_ratio;
+    run.stagnation_pressure_error = e.stagnation_pressure.value;
+    run.drag_coefficient = e.drag_coefficient;
+    const MeasuredError& p = primary.name == "l1_density" ? e.l1_density : e.stagnation_pressure;
+    run.primary_error = p.value;
+    run.primary_error_ci = std::isfinite(p.uncertainty) ? p.uncertainty : 0.0;
+  } catch (const std::exception& ex) {
+    run.note = std::string("error measures failed: ") + ex.what();
+    scene::log_line("pipeline: " + name + ": " + run.note, true);
+  }
+}
+
+GridRun GridRunner::run(const std::string& family, double level, const ShockInput& shock,
+                        const PrimaryError& primary) {
+  const std::string name = level_name(family, level);
+  const nlohmann::json msum = mesh(family, level, shock);
+  check_interrupt("meshgen " + name);
+  if (on_step_) on_step_("mesh " + name);
+  GridRun run;
+  run.family = family;
+  run.level = level;
+  run.cells = msum.value("cells", 0L);
+  run.mesh_seconds = msum.value("seconds", 0.0);
+  run.mesh_cpu_seconds = number_or_nan(msum, "stage_cpu_seconds");
+  if (!s_.pipeline.cfd) return run;
+  const nlohmann::json csum = solve(name, msum.value("fingerprint", ""));
+  const nlohmann::json fsum = locate(name, level, csum.value("fingerprint", ""));
+  run.cfd_wall_seconds = number_or_nan(csum, "wall_seconds");
+  run.cfd_cpu_seconds = number_or_nan(csum, "stage_cpu_seconds");
+  run.steps = csum.value("steps", 0L);
+  run.flow_throughs = number_or_nan(csum, "flow_throughs");
+  run.steady = csum.value("steady_state_reached", false);
+  run.shock = fsum.value("shock", "none");
+  run.value = number_or_nan(fsum, "shock_value");
+  run.value_ci = number_or_nan(fsum, "shock_value_ci");
+  run.wall_pressure_ratio = number_or_nan(csum, "wall_pressure_ratio");
+  measure(name, primary, run);
+  if (on_step_) on_step_("cfd " + name);
+  return run;
+}
+
+}  // namespace pipeline

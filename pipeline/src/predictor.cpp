@@ -1,0 +1,71 @@
+#include "pipeline/predictor.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+#include "shockfit/locate.hpp"
+
+namespace pipeline {
+
+std::string to_string(ShockKind k) {
+  switch (k) {
+    case ShockKind::attached: return "attached";
+    case ShockKind::detached: return "detached";
+    case ShockKind::none: return "none";
+  }
+  return "none";
+}
+
+ShockKind shock_kind_from(const std::string& text) {
+  if (text == "attached") return ShockKind::attached;
+  if (text == "detached") return ShockKind::detached;
+  return ShockKind::none;
+}
+
+nlohmann::json Prediction::summary() const {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["predictor"] = predictor;
+  j["shock"] = to_string(kind);
+  j["shock_angle_deg"] = num(shock_angle_deg);
+  j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
+  j["standoff"] = num(standoff);
+  j["standoff_ci"] = num(standoff_ci);
+  j["cpu_seconds"] = cpu_seconds;
+  j["wall_seconds"] = wall_seconds;
+  j["shock_points"] = static_cast<long>(curve.size());
+  j["shock_csv"] = shock_csv;
+  j["details"] = details;
+  return j;
+}
+
+void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
+                       const std::vector<double>& half_width) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "shock_x,shock_y,ci,accepted\n";
+  for (std::size_t i = 0; i < curve.size(); ++i)
+    os << curve[i].x << ',' << curve[i].y << ',' << (i < half_width.size() ? half_width[i] : 0.0) << ",1\n";
+  scene::write_file_atomic(path, os.str());
+}
+
+}  // namespace pipeline
+
+#include "pipeline/predictors.hpp"
+
+namespace pipeline {
+
+std::vector<std::string> predictor_names() { return {"granular", "correlation", "coarse_cfd"}; }
+
+std::unique_ptr<Predictor> make_predictor(const std::string& name) {
+  if (name == "granular") return std::make_unique<GranularPredictor>();
+  if (name == "correlation") return std::make_unique<CorrelationPredictor>();
+  if (name == "coarse_cfd") return std::make_unique<CoarseCfdPredictor>();
+  std::string known;
+  for (const auto& n : predictor_names()) known += (known.empty() ? "" : ", ") + n;
+  throw scene::InputError("--predictor: unknown predictor '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace pipeline

@@ -1,0 +1,108 @@
+// Where a CFD engineer would put the band without any simulation: the
+// theta-beta-Mach shock line on attached wedges (exact for the inviscid
+// gas), Billig's cylinder shock shape elsewhere (an empirical fit, and for
+// bodies that are not circular cylinders an approximation with the
+// radius of scene::correlation_nose_radius).
+#include "pipeline/predictors.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "pipeline/stage_cache.hpp"
+#include "scene/body.hpp"
+#include "scene/body_traits.hpp"
+#include "scene/cpu_clock.hpp"
+#include "scene/gasdynamics.hpp"
+#include "scene/io.hpp"
+
+namespace pipeline {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+// Points along the predicted curve.
+constexpr int kCurvePoints = 40;
+// Billig's fits reproduce measured cylinder standoffs within a few percent;
+// the band takes +-10% of the standoff on a cylinder, and +-30% on bodies
+// whose nose is only approximated by a cylinder.
+constexpr double kBilligCylinderRel = 0.10;
+constexpr double kBilligApproximateRel = 0.30;
+
+struct Curve {
+  std::vector<scene::Vec2> points;
+  std::vector<double> half_width;
+};
+
+Curve oblique_line(const scene::Domain& d, double beta) {
+  Curve c;
+  const double x_end = std::min(d.xmax, d.ymax / std::tan(beta));
+  for (int k = 0; k <= kCurvePoints; ++k) {
+    const double x = x_end * k / kCurvePoints;
+    c.points.push_back({x, x * std::tan(beta)});
+    c.half_width.push_back(0.0);  // exact: meshgen's smallest band applies
+  }
+  return c;
+}
+
+// Billig's hyperbola from its vertex (x0, yc), upper branch (and the lower
+// one when the domain is not symmetric), clipped to the domain.
+Curve billig_shape(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex, double half_width) {
+  Curve c;
+  const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
+  auto add = [&](double dy) {
+    const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
+    if (x <= d.xmax && x >= d.xmin) {
+      c.points.push_back({x, vertex.y + dy});
+      c.half_width.push_back(half_width);
+    }
+  };
+  for (int k = kCurvePoints; k >= 1 && !d.symmetric; --k) add(-y_bottom * k / kCurvePoints);
+  for (int k = 0; k <= kCurvePoints; ++k) add(y_top * k / kCurvePoints);
+  return c;
+}
+}  // namespace
+
+Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const scene::CpuStopwatch cpu;
+  const scene::Scene& s = cx.scene;
+  const scene::Domain d = scene::scene_domain(s);
+  const double mach = s.freestream.mach;
+  Prediction p;
+  p.predictor = name();
+  Curve curve;
+  if (const auto beta = scene::attached_shock_beta(s)) {
+    p.kind = ShockKind::attached;
+    p.shock_angle_deg = *beta / kDeg;
+    p.shock_angle_ci_deg = 0.0;
+    curve = oblique_line(d, *beta);
+    p.details = {{"correlation", "theta-beta-Mach relation (exact for the inviscid gas)"}};
+  } else {
+    const double radius = scene::correlation_nose_radius(*s.body);
+    const bool exact_shape = scene::correlation_is_exact_shape(*s.body);
+    const double standoff = scene::billig_standoff_cylinder(mach) * radius;
+    const double rel = exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
+    const scene::Vec2 nose = scene::make_body(*s.body).nose;
+    p.kind = ShockKind::detached;
+    p.standoff = standoff / scene::body_length(*s.body);
+    p.standoff_ci = rel * p.standoff;
+    curve = billig_shape(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);
+    p.details = {{"correlation", exact_shape ? "Billig (1967) cylinder shock shape"
+                                             : "Billig (1967) cylinder shock shape with the body's half frontal "
+                                               "height as nose radius (an approximation)"},
+                 {"nose_radius", radius},
+                 {"relative_half_width", rel}};
+  }
+  p.curve = curve.points;
+  p.half_width = curve.half_width;
+  scene::make_dirs(cx.out_dir);
+  p.shock_csv = cx.out_dir + "/shock.csv";
+  write_shock_curve(p.shock_csv, p.curve, p.half_width);
+  p.fingerprint = fingerprint({"correlation", scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
+                               scene::section_yaml(s, "domain")});
+  p.cpu_seconds = cpu.seconds();
+  p.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return p;
+}
+
+}  // namespace pipeline

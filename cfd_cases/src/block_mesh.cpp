@@ -69,7 +69,7 @@ void make_wedge_block_mesh(const scene::Scene& s, long cells, const std::string&
   scene::write_file_atomic(out_dir + "/system/blockMeshDict", fill_placeholders(scene::read_file(tpl), v, tpl));
   scene::write_file_atomic(out_dir + "/system/controlDict", kControlDict);
   fs::remove_all(fs::path(out_dir) / "constant/polyMesh");
-  run_foam(fs::weakly_canonical(out_dir).string(), "blockMesh", "");
+  run_foam(fs::weakly_canonical(out_dir).string(), "blockMesh", {});
 }
 
 }  // namespace cfd

@@ -1,7 +1,6 @@
 #include "case_monitor.hpp"
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <sstream>
@@ -10,6 +9,7 @@
 
 #include "foam_process.hpp"
 #include "scene/errors.hpp"
+#include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
 
 namespace cfd {
@@ -135,8 +135,11 @@ void write_history(const std::string& case_dir, const std::vector<HistoryRow>& r
       "     {:.6g} with lines dashtype 3 title 'force tol'\n",
       steady_tol, force_tol);
   scene::write_file_atomic(case_dir + "/history.gp", gp);
-  const std::string cmd = "cd '" + case_dir + "' && gnuplot history.gp > log.gnuplot 2>&1";
-  (void)std::system(cmd.c_str());
+  try {
+    scene::run_gnuplot(case_dir + "/history.gp", case_dir, case_dir + "/log.gnuplot");
+  } catch (const scene::RunError&) {
+    // Best effort, as above: log.gnuplot says why.
+  }
 }
 
 }  // namespace cfd

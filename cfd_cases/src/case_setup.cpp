@@ -41,6 +41,21 @@ constexpr long kControlDictBackdateSeconds = 3600;
 
 std::string num(double v) { return fmt::format("{:.12g}", v); }
 
+// Allrun is shell text that users run by hand: the bashrc path enters it
+// single-quoted, and the scene name (only inside a comment) on one line, so
+// that neither can run a command.
+std::string shell_quoted(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+std::string one_line(std::string text) {
+  constexpr unsigned char kDelete = 0x7f;
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < ' ' || static_cast<unsigned char>(c) == kDelete) c = ' ';
+  return text;
+}
+
 void backdate(const std::string& path) {
   struct timespec ts[2];
   clock_gettime(CLOCK_REALTIME, &ts[0]);
@@ -165,8 +180,8 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"DDT_SCHEME", cs.lts ? "localEuler" : "Euler"},
       {"RECONSTRUCT", limiter(s)},
       {"NP", std::to_string(cs.np)},
-      {"FOAM_BASHRC", foam_bashrc()},
-      {"SCENE", s.name},
+      {"FOAM_BASHRC", shell_quoted(foam_bashrc())},
+      {"SCENE", one_line(s.name)},
   };
   const fs::path tdir = fs::path(template_dir()) / "rhoCentralFoam";
   for (const auto& e : fs::recursive_directory_iterator(tdir)) {

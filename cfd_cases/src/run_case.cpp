@@ -103,6 +103,10 @@ nlohmann::json CaseResult::summary() const {
   nlohmann::json j;
   j["steady_state_reached"] = steady_state_reached;
   j["wall_seconds"] = wall_seconds;
+  j["cpu_seconds"] = cpu_seconds;
+  const double cell_steps = static_cast<double>(cells) * static_cast<double>(steps);
+  constexpr double kMicro = 1e6;
+  j["cpu_us_per_cell_step"] = cell_steps > 0 ? nlohmann::json(cpu_seconds * kMicro / cell_steps) : nlohmann::json();
   j["sim_time"] = sim_time;
   j["flow_through_time"] = flow_through_time;
   j["flow_throughs"] = flow_through_time > 0 ? sim_time / flow_through_time : 0.0;
@@ -158,11 +162,11 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.np = cs.np;
   r.wall_pressure_ratio = std::numeric_limits<double>::quiet_NaN();
 
-  if (cs.np > 1) run_foam(cdir, "decomposePar", "-force");
+  if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;
   const CaseReader reader(s, cdir, cs.np);
 
   const auto t0 = Clock::now();
-  FoamProcess solver(cdir, "rhoCentralFoam", "", cs.np);
+  FoamProcess solver(cdir, "rhoCentralFoam", {}, cs.np);
   LogFollower log(solver.log_path());
   scene::Progress progress("rhoCentralFoam " + s.name, p.end_time, "flow-throughs");
   std::optional<Snapshot> prev;
@@ -229,12 +233,13 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   log.update();
   r.steps = log.steps();
   const int rc = solver.exit_code();
+  r.cpu_seconds += solver.cpu_seconds();
   // Ready for a rerun by hand (Allrun) from the latest time.
   set_control(cdir, "stopAt", "endTime");
   if (rc != 0 && !stop_requested) fail_run(diagnose(rc, solver.log_path()), solver.log_path());
   progress.finish(r.steady_state_reached ? "steady" : "not steady");
   if (user_stop) throw scene::RunError("interrupted; the case is kept in " + cdir);
-  if (cs.np > 1) run_foam(cdir, "reconstructPar", "-latestTime");
+  if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "reconstructPar", {"-latestTime"}).cpu_seconds;
   write_history(cdir, rows, p.steady_tol, p.force_tol, true);
   if (prev) {
     r.sim_time = prev->time;

@@ -1,11 +1,11 @@
 #include "plot.hpp"
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "scene/errors.hpp"
+#include "scene/gnuplot.hpp"
 
 namespace meshgen {
 
@@ -62,12 +62,13 @@ std::vector<std::string> plot_mesh(const PlaneMesh& mesh, const std::vector<Shoc
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1600,1000 noenhanced font ',12'\n"
      << "set size ratio -1\nset key top left\n"
-     << "set output 'mesh.png'\nset title '" << title << " (" << mesh.cells.size() << " cells)'\n"
+     << "set output 'mesh.png'\nset title "
+     << scene::gnuplot_string(title + " (" + std::to_string(mesh.cells.size()) + " cells)") << "\n"
      << "set xrange [" << d.xmin << ":" << d.xmax << "]\nset yrange [" << d.ymin << ":" << d.ymax << "]\n"
      << "plot 'plot_data/cells.dat' w l lc rgb '#404040' lw 0.4 notitle, "
      << "'plot_data/boundary.dat' w l lc rgb 'blue' lw 1.5 title 'boundary', "
      << "'plot_data/shock.dat' w l lc rgb 'red' lw 1.5 title 'predicted shock'\n"
-     << "set output 'mesh_zoom.png'\nset title '" << title << ": zoom at the shock'\n"
+     << "set output 'mesh_zoom.png'\nset title " << scene::gnuplot_string(title + ": zoom at the shock") << "\n"
      << "set xrange [" << zoom.center.x - zoom.half << ":" << zoom.center.x + zoom.half << "]\n"
      << "set yrange [" << zoom.center.y - zoom.half << ":" << zoom.center.y + zoom.half << "]\n"
      << "plot 'plot_data/zoom.dat' w l lc rgb '#404040' lw 0.8 notitle, "
@@ -77,13 +78,16 @@ std::vector<std::string> plot_mesh(const PlaneMesh& mesh, const std::vector<Shoc
     std::ofstream f(dir + "/plot.gp");
     f << gp.str();
   }
-  std::string quoted = "'";
-  for (const char ch : dir) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  const std::string cmd = "cd " + quoted + "' && gnuplot plot.gp > log.gnuplot 2>&1";
-  const int status = std::system(cmd.c_str());
+  // gnuplot runs in `dir`: the script names its files relative to it.
+  try {
+    scene::run_gnuplot(dir + "/plot.gp", dir, dir + "/log.gnuplot");
+  } catch (const scene::RunError&) {
+    std::filesystem::remove_all(data);
+    std::filesystem::remove(dir + "/plot.gp");
+    throw;
+  }
   std::filesystem::remove_all(data);
   std::filesystem::remove(dir + "/plot.gp");
-  if (status != 0) throw scene::RunError("gnuplot failed; see " + dir + "/log.gnuplot");
   std::filesystem::remove(dir + "/log.gnuplot");
   return {"mesh.png", "mesh_zoom.png"};
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "pipeline/plot.hpp"
+#include "scene/gnuplot.hpp"
 
 namespace pipeline {
 
@@ -35,17 +36,19 @@ bool field_png(const scene::Lattice& lat, const std::string& field, const std::s
   const double aspect = (lat.ny * lat.dy) / (lat.nx * lat.dx);
   const int w = 1000, h = std::clamp(static_cast<int>(w * aspect) + 120, 300, 1400);
   std::ostringstream gp;
-  gp << "cd '" << dir << "'\nset terminal pngcairo size " << w << "," << h << " font 'DejaVu Sans,11'\n"
-     << "set output '" << png.filename().string() << ".tmp'\n"
-     << "set title \"" << title << "\"\nset size ratio -1\nset xlabel 'x / L'\nset ylabel 'y / L'\n"
+  // run_gnuplot runs in `dir`: files are named relative to it.
+  gp << "set terminal pngcairo size " << w << "," << h << " font 'DejaVu Sans,11'\n"
+     << "set output " << scene::gnuplot_path(png.filename().string() + ".tmp") << "\n"
+     << "set title " << scene::gnuplot_string(title) << "\nset size ratio -1\nset xlabel 'x / L'\nset ylabel 'y / L'\n"
      << "set xrange [" << lat.x0 << ":" << lat.x0 + lat.nx * lat.dx << "]\nset yrange [" << lat.y0 << ":"
      << lat.y0 + lat.ny * lat.dy << "]\nset palette rgb 33,13,10\nset key outside bottom center horizontal\n"
      << "set termoption noenhanced\n";
   std::ostringstream inl;
-  gp << "plot '" << fs::path(data).filename().string() << "' using 1:2:3 with image title '" << field << "'";
+  gp << "plot " << scene::gnuplot_path(fs::path(data).filename().string()) << " using 1:2:3 with image title "
+     << scene::gnuplot_string(field);
   for (std::size_t k = 0; k < overlays.size(); ++k) {
     if (overlays[k].points.empty()) continue;
-    gp << ", $o" << k << " with " << overlays[k].style << " title \"" << overlays[k].title << "\"";
+    gp << ", $o" << k << " with " << overlays[k].style << " title " << scene::gnuplot_string(overlays[k].title);
     inl << "$o" << k << " << EOD\n";
     for (const auto& p : overlays[k].points) inl << p.x << " " << p.y << "\n";
     inl << "EOD\n";

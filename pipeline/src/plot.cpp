@@ -1,10 +1,11 @@
 #include "pipeline/plot.hpp"
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "scene/errors.hpp"
+#include "scene/gnuplot.hpp"
 #include "scene/progress.hpp"
 
 namespace pipeline {
@@ -17,10 +18,11 @@ bool run_gnuplot(const std::string& script, const std::string& work_dir) {
     std::ofstream os(path);
     os << script;
   }
-  const std::string cmd = "gnuplot '" + path + "' > '" + work_dir + "/.plot.log' 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) {
-    scene::log_line("pipeline: warning: gnuplot failed (see " + work_dir + "/.plot.log); figure skipped", true);
+  // gnuplot runs in work_dir: scripts name their files relative to it.
+  try {
+    scene::run_gnuplot(path, work_dir, work_dir + "/.plot.log");
+  } catch (const scene::RunError& e) {
+    scene::log_line(std::string("pipeline: warning: ") + e.what() + "; figure skipped", true);
     return false;
   }
   std::error_code ec;
@@ -34,9 +36,10 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
   fs::create_directories(dir);
   std::ostringstream gp;
   gp << "set terminal pngcairo size " << spec.width << "," << spec.height << " font 'DejaVu Sans,11'\n"
-     << "set output '" << png.filename().string() << ".tmp'\n"
-     << "set title \"" << spec.title << "\"\nset xlabel \"" << spec.xlabel << "\"\nset ylabel \""
-     << spec.ylabel << "\"\nset grid\nset key top right\nset termoption noenhanced\n";
+     << "set output " << scene::gnuplot_path(png.filename().string() + ".tmp") << "\n"
+     << "set title " << scene::gnuplot_string(spec.title) << "\nset xlabel " << scene::gnuplot_string(spec.xlabel)
+     << "\nset ylabel " << scene::gnuplot_string(spec.ylabel)
+     << "\nset grid\nset key top right\nset termoption noenhanced\n";
   if (spec.logx) gp << "set logscale x\n";
   if (spec.logy) gp << "set logscale y\n";
   for (const auto& e : spec.extra) gp << e << "\n";
@@ -49,7 +52,7 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
     const bool bars = s.yerr.size() == s.y.size();
     gp << (first ? "" : ", ") << "$d" << k;
     if (bars) gp << " using 1:2:3 with yerrorlines"; else gp << " with " << s.style;
-    gp << " title \"" << s.title << "\"";
+    gp << " title " << scene::gnuplot_string(s.title);
     first = false;
     data << "$d" << k << " << EOD\n";
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -62,9 +65,8 @@ bool plot_png(const PlotSpec& spec, const std::string& png_path) {
   if (first) return false;  // nothing to plot
   gp << "\nset output\n";
   const std::string script = data.str() + gp.str();
-  // gnuplot writes relative to its working directory: run it in `dir`.
-  const std::string cwd_script = "cd '" + dir + "'\n" + script;
-  if (!run_gnuplot(cwd_script, dir)) return false;
+  // gnuplot writes relative to its working directory, which is `dir`.
+  if (!run_gnuplot(script, dir)) return false;
   std::error_code ec;
   fs::rename(dir + "/" + png.filename().string() + ".tmp", png_path, ec);
   return !ec;

@@ -7,21 +7,12 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/shock_csv.hpp"
 #include "shockfit/locate.hpp"
 
 namespace shockfit {
 
 namespace {
-
-const char* const kColumns[] = {"station", "surface_x", "surface_y", "normal_x", "normal_y", "shock_x",
-                                "shock_y", "distance", "ci", "fit_error", "accepted"};
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(12);
-  if (std::isfinite(v)) os << v; else os << "nan";
-  return os.str();
-}
 
 std::vector<std::string> split_csv(const std::string& line) {
   std::vector<std::string> out;
@@ -40,14 +31,11 @@ std::vector<std::string> split_csv(const std::string& line) {
 void write_outputs(const scene::Scene& s, const scene::Lattice& fields, const ShockResult& r,
                    const std::string& out_dir) {
   scene::make_dirs(out_dir);
-  scene::write_stream_atomic(out_dir + "/shock.csv", [&](std::ostream& o) {
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) o << (c ? "," : "") << kColumns[c];
-    o << '\n';
-    for (const StationFit& f : r.stations)
-      o << f.station << ',' << num(f.surface.x) << ',' << num(f.surface.y) << ',' << num(f.normal.x) << ','
-        << num(f.normal.y) << ',' << num(f.shock.x) << ',' << num(f.shock.y) << ',' << num(f.distance) << ','
-        << num(f.ci) << ',' << num(f.fit_error) << ',' << (f.accepted ? 1 : 0) << '\n';
-  });
+  std::vector<scene::ShockCsvRow> rows;
+  rows.reserve(r.stations.size());
+  for (const StationFit& f : r.stations)
+    rows.push_back({f.station, f.surface, f.normal, f.shock, f.distance, f.ci, f.fit_error, f.accepted});
+  scene::write_shock_csv(out_dir + "/shock.csv", rows);
   nlohmann::json j = r.summary();
   j["scene"] = s.name;
   scene::write_json_atomic(out_dir + "/summary.json", j);

@@ -1,24 +1,19 @@
 #include "plot.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "scene/body.hpp"
+#include "scene/errors.hpp"
+#include "scene/gnuplot.hpp"
 #include "shockfit/profile.hpp"
 #include "shockfit/two_line_fit.hpp"
-
-extern char** environ;
 
 namespace shockfit {
 
@@ -31,51 +26,6 @@ constexpr int kProfileWide = 900, kProfileHigh = 600;
 // Each PNG is at most this tall (very slender domains).
 constexpr int kMaxPixelsHigh = 1600;
 
-std::string find_in_path(const std::string& exe) {
-  const char* path = std::getenv("PATH");
-  if (!path) return "";
-  std::stringstream ss(path);
-  std::string dir;
-  while (std::getline(ss, dir, ':')) {
-    if (dir.empty()) continue;
-    const fs::path p = fs::path(dir) / exe;
-    if (::access(p.c_str(), X_OK) == 0) return p.string();
-  }
-  return "";
-}
-
-// Runs gnuplot on `script` with its output to `log`; true on exit status 0.
-bool run_gnuplot(const std::string& gnuplot, const std::string& script, const std::string& log, std::string& why) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args{gnuplot, script};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, gnuplot.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) {
-    why = "could not start gnuplot";
-    return false;
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) break;
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::ifstream in(log);
-    std::string line, last;
-    while (std::getline(in, line))
-      if (!line.empty()) last = line;
-    why = "gnuplot failed: " + last;
-    return false;
-  }
-  return true;
-}
-
 std::string num(double v) {
   std::ostringstream os;
   os.precision(10);
@@ -87,15 +37,13 @@ std::string num(double v) {
 
 bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockResult& r,
                  const std::string& out_dir, std::string& why) {
-  const std::string gnuplot = find_in_path("gnuplot");
-  if (gnuplot.empty()) {
-    why = "gnuplot not found on PATH";
-    return false;
-  }
   const scene::BodyGeometry g = scene::make_body(*s.body);
   const scene::Domain d = scene::scene_domain(s);
   const fs::path dir(out_dir);
+  // gnuplot runs in out_dir, so the script names its files by these names
+  // alone (our own characters), never by a path that holds the user's.
   const std::string tag = ".shockfit_plot_" + std::to_string(::getpid());
+  const auto name = [](const fs::path& p) { return scene::gnuplot_path(p.filename().string()); };
   const fs::path f_field = dir / (tag + "_field.dat"), f_body = dir / (tag + "_body.dat"),
                  f_st = dir / (tag + "_stations.dat"), f_fit = dir / (tag + "_fit.dat"),
                  f_prof = dir / (tag + "_profile.dat"), f_lines = dir / (tag + "_lines.dat"),
@@ -164,33 +112,43 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
   {
     std::ofstream o(f_gp);
     o << "set terminal pngcairo size " << kPixelsWide << "," << high << " font 'sans,10'\n"
-      << "set output '" << tmp1.string() << "'\n"
-      << "set title \"" << s.name << ": field " << r.field << ", shock " << r.shock << "\" noenhanced\n"
+      << "set output " << name(tmp1) << "\n"
+      << "set title " << scene::gnuplot_string(s.name + ": field " + r.field + ", shock " + r.shock)
+      << " noenhanced\n"
       << "set size ratio -1\nset xrange [" << num(d.xmin) << ":" << num(d.xmax) << "]\nset yrange [" << num(d.ymin)
       << ":" << num(d.ymax) << "]\n"
       << "set xlabel 'x / L'\nset ylabel 'y / L'\nset palette rgb 33,13,10\n"
       << "set key bottom right opaque\nset clip two\n"
-      << "plot '" << f_field.string() << "' using 1:2:3 with image notitle, \\\n"
-      << "  '" << f_body.string() << "' using 1:2 with lines lw 2 lc rgb 'black' title 'body', \\\n"
-      << "  '" << f_st.string() << "' using 1:2:($5>0?$3-$1:NaN):($5>0?$4-$2:NaN) with vectors nohead lc rgb 'white' lw 0.5 notitle, \\\n"
-      << "  '" << f_st.string() << "' using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title 'stations', \\\n"
-      << "  '" << f_st.string() << "' using ($5>0?$3:NaN):4 with points pt 6 ps 1 lc rgb 'red' title 'shock points', \\\n"
-      << "  '" << f_st.string() << "' using ($5>0?NaN:$3):4 with points pt 2 ps 0.8 lc rgb 'gray' title 'rejected', \\\n"
-      << "  '" << f_fit.string() << "' using 1:2 with lines lw 2 dt 2 lc rgb 'red' title 'fitted shock'\n";
+      << "plot " << name(f_field) << " using 1:2:3 with image notitle, \\\n"
+      << "  " << name(f_body) << " using 1:2 with lines lw 2 lc rgb 'black' title 'body', \\\n"
+      << "  " << name(f_st) << " using 1:2:($5>0?$3-$1:NaN):($5>0?$4-$2:NaN) with vectors nohead lc rgb 'white' lw 0.5 notitle, \\\n"
+      << "  " << name(f_st) << " using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title 'stations', \\\n"
+      << "  " << name(f_st) << " using ($5>0?$3:NaN):4 with points pt 6 ps 1 lc rgb 'red' title 'shock points', \\\n"
+      << "  " << name(f_st) << " using ($5>0?NaN:$3):4 with points pt 2 ps 0.8 lc rgb 'gray' title 'rejected', \\\n"
+      << "  " << name(f_fit) << " using 1:2 with lines lw 2 dt 2 lc rgb 'red' title 'fitted shock'\n";
     if (have_profile) {
-      o << "set output '" << tmp2.string() << "'\nset size noratio\nset size 1,1\nset autoscale\nset terminal pngcairo size " << kProfileWide
+      o << "set output " << name(tmp2) << "\nset size noratio\nset size 1,1\nset autoscale\nset terminal pngcairo size " << kProfileWide
         << "," << kProfileHigh << " font 'sans,10'\n"
-        << "set title \"station " << r.plot_station << ": " << r.field << " along the normal\" noenhanced\n"
-        << "set xlabel 'distance from the surface / L'\nset ylabel '" << r.field << "' noenhanced\n"
+        << "set title " << scene::gnuplot_string("station " + std::to_string(r.plot_station) + ": " + r.field +
+                                                 " along the normal")
+        << " noenhanced\n"
+        << "set xlabel 'distance from the surface / L'\nset ylabel " << scene::gnuplot_string(r.field)
+        << " noenhanced\n"
         << "set key top right\nset arrow from " << num(shock_t) << ", graph 0 to " << num(shock_t)
         << ", graph 1 nohead dt 3 lc rgb 'red'\n"
-        << "plot '" << f_prof.string() << "' using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title 'samples', \\\n"
-        << "  '" << f_lines.string() << "' index 0 using 1:2 with lines lw 2 lc rgb 'blue' title 'inner line', \\\n"
-        << "  '" << f_lines.string() << "' index 1 using 1:2 with lines lw 2 lc rgb 'dark-green' title 'outer line'\n";
+        << "plot " << name(f_prof) << " using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title 'samples', \\\n"
+        << "  " << name(f_lines) << " index 0 using 1:2 with lines lw 2 lc rgb 'blue' title 'inner line', \\\n"
+        << "  " << name(f_lines) << " index 1 using 1:2 with lines lw 2 lc rgb 'dark-green' title 'outer line'\n";
     }
     o << "unset output\n";
   }
-  const bool ok = run_gnuplot(gnuplot, f_gp.string(), f_log.string(), why);
+  bool ok = true;
+  try {
+    scene::run_gnuplot(f_gp.string(), dir.string(), f_log.string());
+  } catch (const scene::RunError& e) {
+    why = e.what();
+    ok = false;
+  }
   std::error_code ec;
   if (ok) {
     fs::rename(tmp1, png1, ec);

@@ -22,6 +22,9 @@ struct CaseOptions {
 struct CaseResult {
   bool steady_state_reached = false;
   double wall_seconds = 0.0;   // solver start to solver exit (steady stop included)
+  // User + system CPU of rhoCentralFoam (all ranks) and of decomposePar and
+  // reconstructPar when parallel: the load-independent cost of the run.
+  double cpu_seconds = 0.0;
   double sim_time = 0.0;       // simulated (pseudo-)time of the final state, body lengths / c
   long steps = 0;              // solver time steps
   long cells = 0;

@@ -1,11 +1,11 @@
 #include "pipeline/predictor.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <limits>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
-#include "shockfit/locate.hpp"
+#include "scene/shock_csv.hpp"
 
 namespace pipeline {
 
@@ -43,12 +43,26 @@ nlohmann::json Prediction::summary() const {
 
 void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
                        const std::vector<double>& half_width) {
-  std::ostringstream os;
-  os.precision(17);
-  os << "shock_x,shock_y,ci,accepted\n";
-  for (std::size_t i = 0; i < curve.size(); ++i)
-    os << curve[i].x << ',' << curve[i].y << ',' << (i < half_width.size() ? half_width[i] : 0.0) << ",1\n";
-  scene::write_file_atomic(path, os.str());
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::vector<scene::ShockCsvRow> rows;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    scene::ShockCsvRow r;
+    r.station = static_cast<int>(i);
+    r.surface = r.normal = {kNaN, kNaN};
+    r.shock = curve[i];
+    r.distance = r.fit_error = kNaN;
+    r.ci = i < half_width.size() ? half_width[i] : 0.0;
+    r.accepted = true;
+    rows.push_back(r);
+  }
+  scene::write_shock_csv(path, rows);
+}
+
+std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
+  std::vector<ShockPoint> out;
+  for (const auto& r : scene::read_shock_csv(path).rows)
+    if (r.accepted) out.push_back({r.shock, std::isfinite(r.ci) ? r.ci : 0.0});
+  return out;
 }
 
 }  // namespace pipeline

@@ -13,7 +13,6 @@
 #include "pipeline/stage_cache.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
-#include "shockfit/locate.hpp"
 
 namespace pipeline {
 
@@ -39,11 +38,10 @@ Prediction CoarseCfdPredictor::predict(const PredictContext& cx) const {
   }
   const std::string located = grids.case_dir("uniform", level) + "/shockfit/shock.csv";
   if (p.kind != ShockKind::none)
-    for (const auto& st : shockfit::read_shock_csv(located))
-      if (st.accepted) {
-        p.curve.push_back(st.shock);
-        p.half_width.push_back(st.ci);
-      }
+    for (const auto& q : read_accepted_shock(located)) {
+      p.curve.push_back(q.point);
+      p.half_width.push_back(q.half_width);
+    }
   scene::make_dirs(cx.out_dir);
   p.shock_csv = cx.out_dir + "/shock.csv";
   write_shock_curve(p.shock_csv, p.curve, p.half_width);

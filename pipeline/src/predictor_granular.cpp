@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "pipeline/run.hpp"
-#include "shockfit/locate.hpp"
 
 namespace pipeline {
 
@@ -29,11 +28,10 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.fingerprint = r.value("fingerprint", "");
   p.shock_csv = cx.out_dir + "/shockfit/shock.csv";
   if (p.kind != ShockKind::none)
-    for (const auto& st : shockfit::read_shock_csv(p.shock_csv))
-      if (st.accepted) {
-        p.curve.push_back(st.shock);
-        p.half_width.push_back(st.ci);
-      }
+    for (const auto& q : read_accepted_shock(p.shock_csv)) {
+      p.curve.push_back(q.point);
+      p.half_width.push_back(q.half_width);
+    }
   p.details = {{"restitution", cx.scene.granular.restitution},
                {"granular", r.value("granular", nlohmann::json::object())},
                {"field", r.value("field", "")}};

@@ -12,7 +12,6 @@
 #include "scene/body.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
-#include "shockfit/locate.hpp"
 
 namespace pipeline {
 
@@ -77,8 +76,7 @@ std::vector<scene::Vec2> accepted_points(const std::string& shock_csv, Warnings&
   std::vector<scene::Vec2> pts;
   if (!fs::exists(shock_csv)) return pts;
   try {
-    for (const auto& st : shockfit::read_shock_csv(shock_csv))
-      if (st.accepted) pts.push_back(st.shock);
+    for (const auto& q : read_accepted_shock(shock_csv)) pts.push_back(q.point);
   } catch (const std::exception& e) {
     w.add("could not read " + shock_csv, e);
   }

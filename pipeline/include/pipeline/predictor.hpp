@@ -59,9 +59,18 @@ std::vector<std::string> predictor_names();
 // InputError naming the predictors there are for an unknown name.
 std::unique_ptr<Predictor> make_predictor(const std::string& name);
 
-// The one shock.csv writer for predictors that do not run shockfit: header
-// shock_x, shock_y, ci, accepted; every point accepted.
+// shock.csv through scene/shock_csv.hpp (the one format meshgen reads) for
+// predictors that do not run shockfit: every point accepted, its half-width
+// in the ci column.
 void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
                        const std::vector<double>& half_width);
+
+struct ShockPoint {
+  scene::Vec2 point;
+  double half_width = 0;
+};
+// The accepted points of a shock.csv in file order (InputError naming the
+// file when it is malformed or holds fewer than two).
+std::vector<ShockPoint> read_accepted_shock(const std::string& path);
 
 }  // namespace pipeline

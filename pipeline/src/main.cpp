@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <iostream>
 
+#include "pipeline/cost_estimate.hpp"
 #include "pipeline/league.hpp"
+#include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -31,7 +33,10 @@ int main(int argc, char** argv) {
     run->add_option("--force", force, "rerun a stage: granular, shockfit, meshgen, cfd, all")
         ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "all"}));
     run->add_option("--calibration", calibration, "restitution table (default: pipeline/calibration.yaml)");
-    run->add_flag("--dry-run", dry_run, "validate the scene, print it resolved, and stop");
+    run->add_flag("--dry-run", dry_run,
+                  "validate the scene, print it resolved with every grid's estimated cells and CPU seconds, and stop");
+    bool force_budget = false;
+    run->add_flag("--force-budget", force_budget, "run even when the estimate exceeds pipeline.budget_cpu_seconds");
     std::string predictor = "granular";
     run->add_option("--predictor", predictor, "shock predictor: granular, correlation, coarse_cfd");
 
@@ -82,10 +87,13 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       scene::Scene s = scene::load_scene(scene_path);
       if (!s.body) throw scene::InputError(scene_path + ": the pipeline needs a body scene (this one has a box)");
+      (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
+      const auto estimate = pipeline::estimate_run(s, predictor);
       if (dry_run) {
-        std::cout << scene::to_yaml(s);
+        std::cout << scene::to_yaml(s) << "\n" << pipeline::format_estimate(estimate, s.pipeline.budget_cpu_seconds);
         return 0;
       }
+      pipeline::check_budget(s, estimate, force_budget);
       pipeline::RunOptions o;
       o.out_dir = out_dir;
       o.np = np;

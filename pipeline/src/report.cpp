@@ -1,5 +1,6 @@
 #include "pipeline/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "cfd/run_case.hpp"
 #include "pipeline/figures.hpp"
 #include "pipeline/plot.hpp"
 #include "scene/body.hpp"
@@ -21,6 +23,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDeg = std::numbers::pi / 180.0;
+// Pixels across the CFD pictures: finer than the finest cells of the case
+// studies (about 120 across the domain), so each cell shows at its size.
+constexpr int kPictureWidthPx = 900;
 
 nlohmann::json run_object(const GridRun& r, const Reference& ref) {
   nlohmann::json j = {{"cells", r.cells}, {"level", r.level}, {"cfd_wall_seconds", r.cfd_wall_seconds},
@@ -214,15 +219,20 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
       w.add("shock comparison figure skipped", e);
     }
   }
+  const auto domain = scene::scene_domain(in.scene);
+  const int picture_height =
+      std::clamp(static_cast<int>(std::lround(kPictureWidthPx * domain.height() / domain.width())), 100, kPictureWidthPx);
   for (const auto* fam : {&c.uniform, &c.clustered}) {
     for (const auto& r : *fam) {
       const std::string name = grid_name(r);
-      const std::string vti = dir + "/cfd/" + name + "/fields.vti";
-      if (fs::exists(vti)) {
+      const std::string case_dir = dir + "/cfd/" + name;
+      if (fs::exists(case_dir + "/constant/polyMesh")) {
         try {
-          const auto lat = scene::read_vti(vti);
-          field_png(lat, "mach", "CFD Mach number, " + name,
-                    {{"CFD shock", accepted_points(dir + "/cfd/" + name + "/shockfit/shock.csv", w),
+          // Drawn from the CFD cells themselves: every pixel takes the value
+          // of the cell that contains it, at a resolution finer than the cells.
+          const auto lat = cfd::resample_to_lattice(in.scene, case_dir, kPictureWidthPx, picture_height);
+          field_png(lat, "mach", "CFD Mach number, " + name + " (cell values)",
+                    {{"CFD shock", accepted_points(case_dir + "/shockfit/shock.csv", w),
                       "points pt 7 ps 0.6 lc rgb 'white'"}},
                     fig + "/cfd_mach_" + name + ".png");
         } catch (const std::exception& e) {

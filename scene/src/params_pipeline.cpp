@@ -9,6 +9,7 @@ PipelineParams parse_pipeline(Section& s) {
   p.cfd = s.boolean("cfd", p.cfd);
   p.reference_grid = s.boolean("reference_grid", p.reference_grid);
   p.reference_level = s.opt_number("reference_level", {0.0, 1000.0, true, false});
+  p.budget_cpu_seconds = s.number("budget_cpu_seconds", p.budget_cpu_seconds, positive());
   return p;
 }
 
@@ -19,6 +20,7 @@ void emit_pipeline(YAML::Emitter& e, const PipelineParams& p) {
   emit_kv(e, "cfd", p.cfd);
   emit_kv(e, "reference_grid", p.reference_grid);
   emit_opt(e, "reference_level", p.reference_level);
+  emit_kv(e, "budget_cpu_seconds", p.budget_cpu_seconds);
   e << YAML::EndMap;
 }
 

@@ -20,7 +20,10 @@ struct PipelineParams {
   // get one more uniform grid, finer than every family member and in
   // neither family, for Richardson extrapolation of standoff and drag.
   bool reference_grid = true;
-  std::optional<double> reference_level;  // default: half the finest level  // false: stop after meshing (granular + shockfit + meshgen only)
+  std::optional<double> reference_level;  // default: half the finest level
+  // CPU seconds a run may be estimated to cost before it asks for
+  // --force-budget (one CPU hour: a scene that needs more is sized on purpose).
+  double budget_cpu_seconds = 3600.0;  // false: stop after meshing (granular + shockfit + meshgen only)
 };
 
 }  // namespace scene

@@ -1,0 +1,31 @@
+#pragma once
+// What a `pipeline run` will cost, before it runs: every grid's cells,
+// solver steps and CPU seconds from a stated model (docs/verdict.md,
+// "Sizing a run"), so a run that would take hours says so first.
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace pipeline {
+
+struct GridEstimate {
+  std::string name;  // uniform_h2, clustered_h1, ...
+  double cells = 0, steps = 0, cpu_seconds = 0;
+};
+
+struct RunEstimate {
+  std::vector<GridEstimate> grids;
+  double predictor_cpu_seconds = 0;
+  double total_cpu_seconds = 0;
+};
+
+RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor);
+
+// The table `--dry-run` prints.
+std::string format_estimate(const RunEstimate& e, double budget_cpu_seconds);
+
+// InputError when the estimate exceeds the budget, naming both and the way out.
+void check_budget(const scene::Scene& s, const RunEstimate& e, bool force_budget);
+
+}  // namespace pipeline

@@ -1,0 +1,140 @@
+#include "pipeline/cost_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "pipeline/grid_runs.hpp"
+#include "scene/body.hpp"
+#include "scene/body_traits.hpp"
+#include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
+
+namespace pipeline {
+
+namespace {
+// The model, each constant measured on this project's runs (docs/verdict.md):
+// gmsh's quad-dominant Delaunay grids hold about 1.5 cells per h^2 of area.
+constexpr double kCellsPerH2 = 1.5;
+// The smallest cell of a grid is about this fraction of its nominal h, and
+// sets the global time step (2 maxCo A / sum |U.n| + c over its edges).
+constexpr double kSmallestCellFraction = 0.7;
+// Flow-through times to a measured steady state: attached wedges settle in
+// about 5, blunt bodies (started at rest, a bow shock moving out) in about 8.
+constexpr double kFlowThroughsAttached = 5.0;
+constexpr double kFlowThroughsBlunt = 8.0;
+// rhoCentralFoam serial cost per cell-step, and the fixed cost of one case
+// (environment, decomposition, start-up, the monitor's reads).
+constexpr double kCpuPerCellStep = 0.6e-6;
+constexpr double kCpuPerCase = 1.5;
+// Mesh: gmsh and the OpenFOAM conversion cost about this per cell.
+constexpr double kMeshCpuPerCell = 2e-5;
+constexpr double kMeshCpuPerGrid = 1.0;
+// A clustered grid grades from h_min to h_max at ratio `growth`: per unit
+// shock length and side, the graded layers hold sum 1/h_k ~ 1/(h_min (1 - 1/growth)) cells.
+// The granular predictor's cost on the case studies (CPU seconds).
+constexpr double kGranularPredictorCpu = 30.0;
+
+double fluid_area(const scene::Scene& s) {
+  const scene::Domain d = scene::scene_domain(s);
+  const auto g = scene::make_body(*s.body);
+  double a = 0;
+  const auto& p = g.polyline;
+  for (std::size_t i = 0; i < p.size(); ++i) a += scene::cross(p[i], p[(i + 1) % p.size()]);
+  const double body = 0.5 * std::abs(a) * (d.symmetric ? 0.5 : 1.0);
+  return std::max(0.0, d.width() * d.height() - body);
+}
+
+// Length of the shock inside the domain: the oblique line for attached
+// wedges, else about the domain's height (a bow shock bending downstream).
+double shock_length(const scene::Scene& s) {
+  const scene::Domain d = scene::scene_domain(s);
+  if (const auto beta = scene::attached_shock_beta(s)) {
+    const double x_end = std::min(d.xmax, d.ymax / std::tan(*beta));
+    return x_end / std::cos(*beta);
+  }
+  constexpr double kBowLengthPerHeight = 1.3;
+  return kBowLengthPerHeight * d.height();
+}
+
+double steps_for(const scene::Scene& s, double h_min) {
+  const scene::Domain d = scene::scene_domain(s);
+  const double mach = s.freestream.mach;
+  const double flow_throughs = std::min(s.cfd.end_time,
+                                        scene::attached_shock_beta(s) ? kFlowThroughsAttached : kFlowThroughsBlunt);
+  const double dt = s.cfd.max_co * kSmallestCellFraction * h_min / (mach + 2.0);
+  return flow_throughs * (d.width() / mach) / dt;
+}
+
+GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, double h_min) {
+  GridEstimate g;
+  g.name = name;
+  g.cells = cells;
+  g.steps = steps_for(s, h_min);
+  g.cpu_seconds = kCpuPerCellStep * g.cells * g.steps + kCpuPerCase + kMeshCpuPerCell * cells + kMeshCpuPerGrid;
+  return g;
+}
+}  // namespace
+
+RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
+  RunEstimate e;
+  const double L = scene::body_length(*s.body);
+  const double area = fluid_area(s), shock = shock_length(s);
+  const double band = s.mesh.band_width.value_or(0.0) * L;
+  for (const double level : s.pipeline.levels) {
+    const double h = s.mesh.h_min * L * level;
+    e.grids.push_back(grid(s, level_name("uniform", level), kCellsPerH2 * area / (h * h), h));
+  }
+  if (predictor != "none")
+    for (const double level : s.pipeline.levels) {
+      const double h = s.mesh.h_min * L * level, H = s.mesh.h_max * L * level;
+      constexpr double kDefaultBandCells = 3.0;
+      const double w = std::max(band, kDefaultBandCells * h);
+      const double graded = 2.0 * shock / (h * (1.0 - 1.0 / s.mesh.growth));
+      const double cells = kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + area / (H * H));
+      e.grids.push_back(grid(s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
+                             cells, h));
+    }
+  if (!scene::attached_shock_beta(s) && s.pipeline.reference_grid && !s.pipeline.levels.empty()) {
+    const double finest = *std::min_element(s.pipeline.levels.begin(), s.pipeline.levels.end());
+    const double level = s.pipeline.reference_level.value_or(0.5 * finest);
+    const double h = s.mesh.h_min * L * level;
+    e.grids.push_back(grid(s, level_name("reference", level), kCellsPerH2 * area / (h * h), h));
+  }
+  e.predictor_cpu_seconds = predictor == "granular" ? kGranularPredictorCpu : 0.0;
+  e.total_cpu_seconds = e.predictor_cpu_seconds;
+  for (const auto& g : e.grids) e.total_cpu_seconds += g.cpu_seconds;
+  return e;
+}
+
+std::string format_estimate(const RunEstimate& e, double budget) {
+  std::ostringstream os;
+  os << "# estimated cost (model in docs/verdict.md; expect +-50%)\n";
+  char line[200];
+  std::snprintf(line, sizeof line, "%-28s %12s %12s %14s\n", "grid", "cells", "steps", "CPU seconds");
+  os << line;
+  for (const auto& g : e.grids) {
+    std::snprintf(line, sizeof line, "%-28s %12.0f %12.0f %14.1f\n", g.name.c_str(), g.cells, g.steps, g.cpu_seconds);
+    os << line;
+  }
+  std::snprintf(line, sizeof line, "%-28s %12s %12s %14.1f\n", "predictor", "", "", e.predictor_cpu_seconds);
+  os << line;
+  std::snprintf(line, sizeof line, "%-28s %12s %12s %14.1f  (%.2f CPU hours; budget %.0f s)\n", "total", "", "",
+                e.total_cpu_seconds, e.total_cpu_seconds / 3600.0, budget);
+  os << line;
+  return os.str();
+}
+
+void check_budget(const scene::Scene& s, const RunEstimate& e, bool force_budget) {
+  if (force_budget || e.total_cpu_seconds <= s.pipeline.budget_cpu_seconds) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                ": key 'pipeline.budget_cpu_seconds': the run is estimated at %.0f CPU seconds (%.1f CPU hours), over "
+                "the budget of %.0f; see the grids with --dry-run, coarsen mesh.h_min or pipeline.levels, raise the "
+                "budget, or pass --force-budget",
+                e.total_cpu_seconds, e.total_cpu_seconds / 3600.0, s.pipeline.budget_cpu_seconds);
+  throw scene::InputError(s.source_file + buf);
+}
+
+}  // namespace pipeline

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scene/errors.hpp"
+#include "scene/yaml_text.hpp"
 
 namespace scene {
 
@@ -160,6 +161,10 @@ YAML::Node load_single_document(const std::string& text, const std::string& orig
   const YAML::Node root = docs.empty() ? YAML::Node() : docs.front();
   check_node(root, origin, "", 0);
   return root;
+}
+
+void check_yaml_text(const std::string& text, const std::string& origin) {
+  (void)load_single_document(text, origin);
 }
 
 }  // namespace scene

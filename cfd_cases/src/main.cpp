@@ -16,6 +16,7 @@
 #include "scene/errors.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scene/staging.hpp"
 
 namespace {
 constexpr int kDefaultLatticeNx = 300;
@@ -26,6 +27,15 @@ int lattice_ny(const scene::Scene& s, int nx, int ny) {
   const scene::Domain d = scene::scene_domain(s);
   return std::max(1, static_cast<int>(std::lround(nx * d.height() / d.width())));
 }
+// The failed case moves from the staging folder to OUT.failed: the paths in
+// its message (the log to read) must follow it.
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,13 +85,31 @@ int main(int argc, char** argv) {
       scene::write_vti(cfd::resample_to_lattice(s, case_dir, nx, lattice_ny(s, nx, ny)), out);
       return 0;
     }
+    scene::require_supersonic(s, "cfd run");
+    scene::refuse_out_overlap(out, mesh_dir, "--mesh folder");
+    scene::refuse_out_overlap(out, scene_path, "scene file");
     scene::install_interrupt_handler();
     cfd::CaseOptions o;
     o.np = np;
     if (lts) o.local_time_stepping = true;
     if (no_lts) o.local_time_stepping = false;
-    const cfd::CaseResult r = cfd::run_case(s, mesh_dir, out, o);
-    scene::write_vti(cfd::resample_to_lattice(s, r.case_dir, nx, lattice_ny(s, nx, ny)), r.case_dir + "/lattice.vti");
+    // The case is built beside --out and swapped in only when it finished:
+    // a failed or interrupted run keeps the previous good case in --out and
+    // leaves its own beside it as OUT.failed for inspection.
+    scene::StagedDir staged(out);
+    cfd::CaseResult r;
+    try {
+      r = cfd::run_case(s, mesh_dir, staged.path(), o);
+      scene::write_vti(cfd::resample_to_lattice(s, r.case_dir, nx, lattice_ny(s, nx, ny)),
+                       r.case_dir + "/lattice.vti");
+    } catch (const scene::RunError& e) {
+      const std::string stage = r.case_dir.empty() ? staged.path() : r.case_dir;
+      const std::string kept = staged.keep_as(".failed");
+      throw scene::RunError(replace_all(e.what(), stage, kept) + " (" + out + " is unchanged)");
+    }
+    staged.commit(scene::Leftovers::discard);
+    r.case_dir = out;
+    r.history_csv = out + "/history.csv";
     std::cout << r.summary().dump(2) << "\n";
     return 0;
   });

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <iostream>
 #include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <unistd.h>
 #include <string>
 #include <thread>
 #include <vector>
@@ -24,6 +27,7 @@
 #include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scene/staging.hpp"
 
 namespace {
 
@@ -81,6 +85,29 @@ void print_dry_run(const scene::Scene& s) {
   }
 }
 
+// A complete run replaces OUT. An interrupted one must not replace complete
+// results: when OUT already holds some, the partial ones go beside it as
+// OUT.partial (their summary says "partial": true); with nothing to lose
+// they become OUT. Returns the exit code; RunError for an interrupted flow.
+int finish_run(scene::StagedDir& staged, const nlohmann::json& summary) {
+  const bool partial = summary.value("partial", summary.value("interrupted", false));
+  if (!partial) {
+    staged.commit(scene::Leftovers::discard);
+    return 0;
+  }
+  std::error_code ec;
+  const bool has_results = std::filesystem::exists(staged.out() + "/summary.json", ec);
+  const std::string where = has_results ? staged.keep_as(".partial") : staged.out();
+  if (!has_results) staged.commit(scene::Leftovers::discard);
+  const std::string kept = has_results ? "; the complete results in " + staged.out() + " are unchanged" : "";
+  if (summary.value("kind", "") != "flow") {
+    // Box runs stop cleanly on Ctrl-C with a summary of what they did.
+    std::fprintf(stderr, "granular: interrupted: partial summary in %s%s\n", where.c_str(), kept.c_str());
+    return 0;
+  }
+  throw scene::RunError("interrupted: the fields averaged so far are in " + where + " (partial)" + kept);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,24 +140,27 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (out_dir.empty()) throw scene::InputError("granular run: --out DIR is required (unless --dry-run)");
+    scene::refuse_out_overlap(out_dir, scene_path, "scene file");
     scene::install_interrupt_handler();
     granular::RunOptions opt;
-    opt.out_dir = out_dir;
     opt.np = np > 0 ? np : default_threads(ranks);
-    if (s.box) {
-      // Box validation runs are single-process; extra ranks have nothing to do.
-      if (rank != 0) return 0;
-      const nlohmann::json summary = granular::run_box_scene(s, opt);
-      (void)summary;
-      return 0;
-    }
+    // Results are built beside OUT and swapped in when the run completes
+    // (see finish_run). Under mpirun every rank writes into rank 0's folder.
+    long tag = static_cast<long>(::getpid());
+#ifdef GRANULAR_HAVE_MPI
+    if (ranks > 1) MPI_Bcast(&tag, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+#endif
+    if (s.box && rank != 0) return 0;  // box runs are single-process
+    std::optional<scene::StagedDir> staged;
+    if (rank == 0) staged.emplace(out_dir, tag);
+    opt.out_dir = scene::StagedDir::path_for(out_dir, tag);
+    if (s.box) return finish_run(*staged, granular::run_box_scene(s, opt));
 #ifdef GRANULAR_HAVE_MPI
     const granular::FlowResult r = granular::run_flow_scene(s, opt, mpi_group(mpi));
 #else
     const granular::FlowResult r = granular::run_flow_scene(s, opt);
 #endif
-    if (r.summary.value("interrupted", false))
-      throw scene::RunError("interrupted: the fields averaged so far are in " + out_dir);
-    return 0;
+    if (rank != 0) return r.summary.value("interrupted", false) ? 1 : 0;
+    return finish_run(*staged, r.summary);
   });
 }

@@ -1,21 +1,27 @@
 // generate_mesh: sizes -> gmsh -> OpenFOAM -> checks -> summary, staged in a
-// scratch folder inside OUT and moved into place only when complete.
+// folder beside OUT and swapped in only when complete.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <time.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <optional>
+
 #include "foam_export.hpp"
+#include "gmsh_child.hpp"
 #include "gmsh_mesher.hpp"
 #include "meshgen/fluid_region.hpp"
 #include "meshgen/mesh.hpp"
 #include "meshgen/size_field.hpp"
 #include "plot.hpp"
 #include "scene/errors.hpp"
+#include "scene/cli.hpp"
 #include "scene/io.hpp"
+#include "scene/staging.hpp"
 
 namespace meshgen {
 
@@ -39,21 +45,27 @@ constexpr double kCellsPerH2Quads = 1.0;
 constexpr double kCellsPerH2Triangles = 2.0;
 // Clipping the shock curve: crossings located to this fraction of h_min.
 constexpr double kClipResolutionCells = 0.25;
+// Refusals before gmsh starts (InputError, exit 2): gmsh aborts the
+// process when it runs out of memory and needs ~1 KB and ~10 us per cell, so
+// a grid beyond kMaxCells (minutes, gigabytes) is a typo, not a request; and
+// cells below kMinCellSize body lengths meet gmsh's geometric tolerance
+// (points closer than 1e-10 body lengths are merged).
+constexpr double kMaxCells = 5e6;
+constexpr double kMinCellSize = 1e-5;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
 constexpr double kZoomCells = 12.0;
 constexpr double kZoomBands = 3.0;
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+// CPU seconds of waited-for child processes (the gmsh child).
+double children_cpu_seconds() {
+  rusage u{};
+  ::getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-// CPU seconds of this process so far (all threads): gmsh runs in-process, so
-// its CPU is the difference around the calls.
-double process_cpu_seconds() {
-  timespec t{};
-  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  constexpr double kNano = 1e-9;
-  return static_cast<double>(t.tv_sec) + kNano * static_cast<double>(t.tv_nsec);
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 nlohmann::json domain_json(const scene::Domain& d) {
@@ -133,11 +145,83 @@ double solve_scale(const Plan& plan, const FluidRegion& region, double target, d
   return std::sqrt(lo * hi);
 }
 
-void move_into(const fs::path& from, const fs::path& to) {
-  if (!fs::exists(from)) return;
-  if (fs::is_directory(to)) fs::remove_all(to);
-  fs::create_directories(to.parent_path());
-  fs::rename(from, to);
+std::string fmt_g(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// Refuses a size request before any file is written.
+void check_sizes(const std::string& where, double h_min_rel, double h_max_rel, std::optional<double> target) {
+  if (!std::isfinite(h_min_rel) || !(h_min_rel > 0) || !std::isfinite(h_max_rel) || !(h_max_rel > 0))
+    throw scene::InputError(where + "h_min and h_max must be finite positive numbers (body lengths), got " +
+                            fmt_g(h_min_rel) + " and " + fmt_g(h_max_rel));
+  if (h_min_rel < kMinCellSize)
+    throw scene::InputError(where + "h_min " + fmt_g(h_min_rel) + " is below the smallest cell size meshgen accepts, " +
+                            fmt_g(kMinCellSize) + " body lengths");
+  if (target && !(std::isfinite(*target) && *target >= 1.0 && *target <= kMaxCells))
+    throw scene::InputError(where + "target_cells must be a finite number in [1, " + fmt_g(kMaxCells) + "], got " +
+                            fmt_g(*target));
+}
+
+void check_estimate(const std::string& where, double estimate, double h_min, double area) {
+  if (std::isfinite(estimate) && estimate <= kMaxCells) return;
+  throw scene::InputError(where + "the grid would have about " + fmt_g(estimate) + " cells (flow area " + fmt_g(area) +
+                          " over h_min^2 = " + fmt_g(h_min * h_min) + " at the finest) , above meshgen's limit of " +
+                          fmt_g(kMaxCells) + "; raise mesh.h_min / mesh.h_max or lower the target");
+}
+
+// The plan of a request, refused (InputError) before anything is written
+// when the scene is subsonic, a size is not finite or out of range, or the
+// estimated cell count is beyond kMaxCells.
+struct CheckedPlan {
+  Plan plan;
+  double estimate = 0;  // cells at the requested sizes (first attempt)
+};
+
+CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const FluidRegion& region,
+                              const std::string& where) {
+  CheckedPlan c;
+  Plan& plan = c.plan;
+  const double L = region.length_scale;
+  const scene::MeshParams& mp = s.mesh;
+  plan.uniform = r.uniform;
+  plan.base.h_min = r.h_min.value_or(mp.h_min) * L;
+  plan.base.h_max = r.h_max.value_or(mp.h_max) * L;
+  check_sizes(where, r.h_min.value_or(mp.h_min), r.h_max.value_or(mp.h_max), r.target_cells);
+  if (r.h_min && !r.h_max) plan.base.h_max = std::max(plan.base.h_max, plan.base.h_min);
+  if (r.h_max && !r.h_min) plan.base.h_min = std::min(plan.base.h_min, plan.base.h_max);
+  if (!(plan.base.h_min > 0) || plan.base.h_min > plan.base.h_max)
+    throw scene::InputError(where + "h_min must be positive and not exceed h_max");
+  plan.base.h_body = std::clamp(mp.h_body ? *mp.h_body * L : std::sqrt(plan.base.h_min * plan.base.h_max),
+                                plan.base.h_min, plan.base.h_max);
+  plan.base.growth = mp.growth;
+  plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
+  if (mp.band_width) plan.band_width = *mp.band_width * L;
+  plan.curve = r.shock_curve;
+  plan.ci = r.shock_ci;
+  plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
+  if (!r.uniform && r.shock_curve.empty())
+    throw scene::InputError(where + "a clustered grid needs a shock curve (meshgen --shock shock.csv)");
+
+  if (plan.uniform && plan.uniform_h / L < kMinCellSize)
+    throw scene::InputError(where + "uniform cell size " + fmt_g(plan.uniform_h / L) +
+                            " is below the smallest cell size meshgen accepts, " + fmt_g(kMinCellSize) +
+                            " body lengths");
+  if (plan.target && *plan.target > kMaxCells)
+    throw scene::InputError(where + "target_cells " + fmt_g(*plan.target) + " is above meshgen's limit of " +
+                            fmt_g(kMaxCells) + " cells");
+  const double flow_area = region.domain.width() * region.domain.height();
+  {
+    // The estimate at the requested sizes, before anything is written.
+    const double scale0 = plan.target ? solve_scale(plan, region, *plan.target, mp.recombine ? kCellsPerH2Quads
+                                                                                             : kCellsPerH2Triangles)
+                                      : 1.0;
+    const Sizing z = plan.at(scale0, region);
+    c.estimate = estimate_cells(plan.field(z, region), region);
+    check_estimate(where, c.estimate, plan.uniform ? z.uniform_h : z.params.h_min, flow_area);
+  }
+  return c;
 }
 
 }  // namespace
@@ -155,37 +239,36 @@ nlohmann::json MeshResult::summary() const {
   return j;
 }
 
+std::string mesh_where(const scene::Scene& s) {
+  return (s.source_file.empty() ? s.name : s.source_file) + ": mesh: ";
+}
+
+double check_mesh_request(const scene::Scene& s, const MeshRequest& r) {
+  scene::require_supersonic(s, "meshgen");
+  return make_checked_plan(s, r, make_fluid_region(s), mesh_where(s)).estimate;
+}
+
 MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir) {
   const auto t_total = std::chrono::steady_clock::now();
+  scene::require_supersonic(s, "meshgen");
   const FluidRegion region = make_fluid_region(s);
   const double L = region.length_scale;
   const scene::MeshParams& mp = s.mesh;
-  const std::string where = (s.source_file.empty() ? s.name : s.source_file) + ": mesh: ";
+  const std::string where = mesh_where(s);
 
-  Plan plan;
-  plan.uniform = r.uniform;
-  plan.base.h_min = r.h_min.value_or(mp.h_min) * L;
-  plan.base.h_max = r.h_max.value_or(mp.h_max) * L;
-  if (r.h_min && !r.h_max) plan.base.h_max = std::max(plan.base.h_max, plan.base.h_min);
-  if (r.h_max && !r.h_min) plan.base.h_min = std::min(plan.base.h_min, plan.base.h_max);
-  if (!(plan.base.h_min > 0) || plan.base.h_min > plan.base.h_max)
-    throw scene::InputError(where + "h_min must be positive and not exceed h_max");
-  plan.base.h_body = std::clamp(mp.h_body ? *mp.h_body * L : std::sqrt(plan.base.h_min * plan.base.h_max),
-                                plan.base.h_min, plan.base.h_max);
-  plan.base.growth = mp.growth;
-  plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
-  if (mp.band_width) plan.band_width = *mp.band_width * L;
-  plan.curve = r.shock_curve;
-  plan.ci = r.shock_ci;
-  plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
-  if (!r.uniform && r.shock_curve.empty())
-    throw scene::InputError(where + "a clustered grid needs a shock curve (meshgen --shock shock.csv)");
+  const CheckedPlan checked = make_checked_plan(s, r, region, where);
+  const Plan& plan = checked.plan;
+  const double flow_area = region.domain.width() * region.domain.height();
 
+  // Built beside OUT and swapped in only when complete: a failed or
+  // interrupted run leaves the previous mesh in OUT as it was.
+  scene::StagedDir staged(out_dir);
   const fs::path out(out_dir);
-  fs::create_directories(out);
-  const fs::path stage = out / (".meshgen-staging-" + std::to_string(::getpid()));
-  fs::remove_all(stage);
-  fs::create_directories(stage);
+  const fs::path stage(staged.path());
+  const auto stop_if_interrupted = [&](const std::string& step) {
+    if (scene::interrupted())
+      throw scene::RunError("interrupted " + step + "; " + out_dir + " is unchanged");
+  };
 
   GmshJob job;
   job.recombine = mp.recombine;
@@ -208,11 +291,15 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
     const SizeField field = plan.field(sizing, region);
     estimate = estimate_cells(field, region);
     job.thickness = plan.uniform ? sizing.uniform_h : sizing.params.h_max;
+    check_estimate(where, estimate * calibration, plan.uniform ? sizing.uniform_h : sizing.params.h_min, flow_area);
+    stop_if_interrupted("before meshing");
     const auto t0 = std::chrono::steady_clock::now();
-    const double c0 = process_cpu_seconds();
-    mesh = mesh_with_gmsh(region, field, job);
+    const double cpu_before = children_cpu_seconds();
+    mesh = mesh_with_gmsh_in_child(region, field, job, (stage / "plane_mesh.bin").string());
     gmsh_seconds = seconds_since(t0);
-    gmsh_cpu += process_cpu_seconds() - c0;  // every attempt costs
+    // The child's CPU time: what gmsh itself cost, whatever the load; every
+    // attempt at a target cell count costs.
+    gmsh_cpu += children_cpu_seconds() - cpu_before;
     if (!plan.target) break;
     const double n = static_cast<double>(mesh.volume_cells);
     const double miss = std::abs(n / *plan.target - 1.0);
@@ -249,8 +336,10 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   res.min_cell_size = hmin;
   res.max_cell_size = hmax;
 
+  stop_if_interrupted("after meshing");
   write_control_dict(stage.string());
   double foam_cpu = run_gmsh_to_foam(stage.string()).cpu_seconds;
+  stop_if_interrupted("after gmshToFoam");
   const std::map<std::string, std::string> types = {
       {"inlet", "patch"}, {"outlet", "patch"}, {"top", "patch"},
       {"bottom", region.domain.symmetric ? "symmetryPlane" : "patch"}, {"body", "wall"},
@@ -322,26 +411,21 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   j["png"] = pngs;
   j["plot_error"] = plot_error;
 
-  // Move the finished case into place, then the summary last.
-  move_into(stage / "mesh.msh", out / "mesh.msh");
-  move_into(stage / "constant" / "polyMesh", out / "constant" / "polyMesh");
-  for (const char* f : {"controlDict", "fvSchemes", "fvSolution"}) move_into(stage / "system" / f, out / "system" / f);
-  for (const char* f : {"log.gmshToFoam", "log.checkMesh", "mesh.png", "mesh_zoom.png"}) {
-    if (fs::exists(stage / f)) {
-      fs::remove(out / f);
-      fs::rename(stage / f, out / f);
-    }
-  }
-  fs::remove_all(stage);
+  stop_if_interrupted("after checkMesh");
   j["seconds_total"] = seconds_since(t_total);
-  scene::write_json_atomic((out / "summary.json").string(), res.summary());
-  // A failed check fails the run once the case and summary are in place for
-  // inspection; quality warnings alone do not (foam_export.cpp says which).
+  scene::write_json_atomic((stage / "summary.json").string(), res.summary());
+  // A failed check fails the run; quality warnings alone do not
+  // (foam_export.cpp says which). A failed mesh is no replacement for a good
+  // one: it is kept for inspection beside OUT, which stays as it was.
   if (!check.ok && !check.warnings_only) {
     const std::string first = check.failures.substr(0, check.failures.find('\n'));
-    throw scene::RunError((out / "log.checkMesh").string() + ": checkMesh failed: " +
-                          (first.empty() ? std::string("no verdict") : first));
+    const std::string failed_dir = staged.keep_as(".failed");
+    throw scene::RunError(failed_dir + "/log.checkMesh: checkMesh failed: " +
+                          (first.empty() ? std::string("no verdict") : first) + "; " + out_dir + " is unchanged");
   }
+  // Swap the finished case in whole; files of OUT this run does not write
+  // (e.g. a pipeline cache record) are carried over.
+  staged.commit(scene::Leftovers::keep);
   return res;
 }
 

@@ -1,11 +1,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "pipeline/calibration.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/yaml_text.hpp"
 
 namespace pipeline {
 
@@ -19,6 +21,8 @@ CalibrationTable read_calibration(const std::string& path) {
   CalibrationTable t;
   YAML::Node root;
   try {
+    // A malformed table must be an input error, never a parser hang.
+    if (std::filesystem::is_regular_file(path)) scene::check_yaml_text(scene::read_file(path), path);
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
     throw scene::InputError(path + ": calibration table not found");

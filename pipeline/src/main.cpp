@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "pipeline/cost_estimate.hpp"
@@ -14,6 +15,7 @@
 #include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scene/staging.hpp"
 
 int main(int argc, char** argv) {
   scene::install_interrupt_handler();
@@ -29,7 +31,7 @@ int main(int argc, char** argv) {
     bool dry_run = false;
     run->add_option("scene", scene_path, "scene YAML")->required();
     run->add_option("--out", out_dir, "output directory")->required();
-    run->add_option("--np", np, "processes for granular replicas and OpenFOAM")->check(CLI::PositiveNumber);
+    run->add_option("--np", np, "processes for granular replicas and OpenFOAM")->check(CLI::Range(1, 4096));
     run->add_option("--force", force, "rerun a stage: granular, shockfit, meshgen, cfd, all")
         ->check(CLI::IsMember({"granular", "shockfit", "meshgen", "cfd", "all"}));
     run->add_option("--calibration", calibration, "restitution table (default: pipeline/calibration.yaml)");
@@ -62,8 +64,8 @@ int main(int argc, char** argv) {
     sweep->add_option("scene", scene_path, "scene YAML")->required();
     sweep->add_option("--vary", vary, "KEY=v1,v2,... (repeatable; e.g. granular.restitution=0.8,0.9)")->required();
     sweep->add_option("--out", out_dir, "output directory")->required();
-    sweep->add_option("--jobs", jobs, "cases at once (processes)")->check(CLI::PositiveNumber);
-    sweep->add_option("--np", np, "threads per case")->check(CLI::PositiveNumber);
+    sweep->add_option("--jobs", jobs, "cases at once (processes)")->check(CLI::Range(1, 256));
+    sweep->add_option("--np", np, "threads per case")->check(CLI::Range(1, 1024));
 
     auto* calib = app.add_subcommand("calibrate", "find e so that granular shock angles match ideal-gas angles");
     pipeline::CalibrateOptions co;
@@ -87,6 +89,17 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       scene::Scene s = scene::load_scene(scene_path);
       if (!s.body) throw scene::InputError(scene_path + ": the pipeline needs a body scene (this one has a box)");
+      scene::require_supersonic(s, "the pipeline");
+      scene::refuse_out_overlap(out_dir, scene_path, "scene file");
+      // A table the user named must exist: silently running uncalibrated
+      // would change every result without a word.
+      if (!calibration.empty() && !std::filesystem::is_regular_file(calibration))
+        throw scene::InputError(calibration + ": --calibration file not found (a restitution table from "
+                                              "`pipeline calibrate`)");
+      if (calibration.empty() && !s.pipeline.calibration.empty() &&
+          !std::filesystem::is_regular_file(s.pipeline.calibration))
+        throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " + s.pipeline.calibration +
+                                " not found");
       (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
       const auto estimate = pipeline::estimate_run(s, predictor);
       if (dry_run) {

@@ -13,6 +13,7 @@
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/yaml_text.hpp"
 #include "scene/progress.hpp"
 
 namespace pipeline {
@@ -37,6 +38,8 @@ scene::Scene scene_with(const std::string& scene_path,
                         const std::vector<std::pair<std::string, std::string>>& sets) {
   YAML::Node root;
   try {
+    // A malformed scene must be an input error, never a parser hang.
+    if (std::filesystem::is_regular_file(scene_path)) scene::check_yaml_text(scene::read_file(scene_path), scene_path);
     root = YAML::LoadFile(scene_path);
   } catch (const YAML::BadFile&) {
     throw scene::InputError(scene_path + ": scene file not found");

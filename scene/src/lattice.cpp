@@ -1,5 +1,6 @@
 #include "scene/lattice.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -83,12 +84,37 @@ Lattice read_vti(const std::string& path) {
       R"(<ImageData\s+WholeExtent=\"0 (\d+) 0 (\d+) 0 0\"\s+Origin=\"([^ ]+) ([^ ]+) [^\"]+\"\s+Spacing=\"([^ ]+) ([^ ]+) [^\"]+\")");
   std::smatch m;
   // Only the header is searched (std::regex is slow and recursive on long text).
-  const std::string head = text.substr(0, text.find("<DataArray"));
+  // The header is a few hundred characters; capping it keeps a junk file
+  // without any <DataArray from being fed whole to the regex.
+  constexpr std::size_t kMaxHeaderChars = 4096;
+  const std::string head = text.substr(0, std::min(text.find("<DataArray"), kMaxHeaderChars));
   if (!std::regex_search(head, m, image)) throw bad("no <ImageData WholeExtent/Origin/Spacing> header");
-  Lattice lat(std::stoi(m[1]), std::stoi(m[2]), std::stod(m[3]), std::stod(m[4]), std::stod(m[5]),
-              std::stod(m[6]));
+  // Header numbers are checked before anything is sized from them: a hostile
+  // extent would otherwise overflow stoi or allocate billions of values.
+  const auto count = [&](const std::string& t, const char* what) {
+    if (t.size() > 9) throw bad(std::string(what) + " '" + t + "' is too large");
+    return std::stoi(t);
+  };
+  const auto real = [&](const std::string& t, const char* what) {
+    double v = 0;
+    try {
+      v = std::stod(t);
+    } catch (...) {
+      throw bad(std::string(what) + " '" + t + "' is not a number");
+    }
+    if (!std::isfinite(v)) throw bad(std::string(what) + " '" + t + "' is not finite");
+    return v;
+  };
+  Lattice lat(count(m[1], "WholeExtent nx"), count(m[2], "WholeExtent ny"), real(m[3], "Origin x"),
+              real(m[4], "Origin y"), real(m[5], "Spacing x"), real(m[6], "Spacing y"));
   if (lat.nx < 1 || lat.ny < 1) throw bad("empty extent");
+  if (!(lat.dx > 0) || !(lat.dy > 0)) throw bad("Spacing must be positive");
   const std::size_t n = static_cast<std::size_t>(lat.nx) * static_cast<std::size_t>(lat.ny);
+  // Every value takes at least two characters ("0 "): a larger extent
+  // cannot be what the file holds.
+  if (n > text.size() / 2)
+    throw bad("WholeExtent " + std::to_string(lat.nx) + " x " + std::to_string(lat.ny) +
+              " needs more values than the file can hold");
   // DataArrays are found by plain search: std::regex recurses once per
   // character it matches and overflows the stack on large arrays.
   const std::regex name_attr(R"(Name=\"([^\"]+)\")");

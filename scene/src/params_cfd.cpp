@@ -2,10 +2,17 @@
 
 namespace scene {
 
+namespace {
+// Flow-through times: end_time beyond this is a typo that never finishes.
+constexpr double kMaxEndTime = 1e4;
+// Written times per run: each is a directory of fields on disk.
+constexpr double kMaxWrites = 1e4;
+}  // namespace
+
 CfdParams parse_cfd(Section& s) {
   CfdParams p;
   p.max_co = s.number("max_co", p.max_co, {0.0, 5.0, true, false});
-  p.end_time = s.number("end_time", p.end_time, positive());
+  p.end_time = s.number("end_time", p.end_time, {0.0, kMaxEndTime, true, false});
   p.write_interval = s.number("write_interval", p.write_interval, positive());
   p.steady_tol = s.number("steady_tol", p.steady_tol, positive());
   p.force_tol = s.number("force_tol", p.force_tol, positive());
@@ -17,6 +24,9 @@ CfdParams parse_cfd(Section& s) {
   p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));
   p.start = s.string("start", p.start, {"auto", "freestream", "rest"});
   if (p.write_interval > p.end_time) s.fail("write_interval", "must not exceed end_time");
+  if (p.end_time / p.write_interval > kMaxWrites)
+    s.fail("write_interval", "end_time / write_interval must not exceed " + std::to_string(static_cast<int>(kMaxWrites)) +
+                                 " written times, got " + std::to_string(p.end_time / p.write_interval));
   return p;
 }
 

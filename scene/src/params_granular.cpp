@@ -1,8 +1,23 @@
 #include "params_parse.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace scene {
+
+namespace {
+// Collision counts are converted to 64-bit integers: keep them well inside.
+constexpr double kMaxCollisions = 1e18;
+// Granular Mach ceiling (see freestream.mach): the inflow speed grows with
+// it and so does the event rate; 1e308 overflowed into a hang.
+constexpr double kMaxMach = 50.0;
+// Warm-up and averaging in flow-through times: beyond this a run is a typo
+// that would never finish.
+constexpr double kMaxFlowThroughs = 1e6;
+// Gravity per unit mass, in T/(m d): a thousand times the thermal scale
+// already throws every disk onto the floor within one collision time.
+constexpr double kMaxGravity = 1e3;
+}  // namespace
 
 GranularParams parse_granular(Section& s) {
   GranularParams p;
@@ -13,19 +28,23 @@ GranularParams parse_granular(Section& s) {
   p.restitution = s.number("restitution", p.restitution, {0.0, 1.0, true, false});
   p.restitution_wall = s.opt_number("restitution_wall", {0.0, 1.0, true, false});
   p.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, kMaxI));
-  p.collisions = s.opt_number("collisions", positive());
+  p.collisions = s.opt_number("collisions", {0.0, kMaxCollisions, true, false});
   p.time = s.opt_number("time", positive());
   p.tc = s.number("tc", p.tc, non_negative());
-  p.checkpoint_interval = s.opt_number("checkpoint_interval", positive());
+  p.checkpoint_interval = s.opt_number("checkpoint_interval", {0.0, kMaxCollisions, true, false});
   p.gravity = s.vec2("gravity", p.gravity);
+  if (std::abs(p.gravity.x) > kMaxGravity || std::abs(p.gravity.y) > kMaxGravity)
+    s.fail("gravity", "expected components within +-" + std::to_string(static_cast<int>(kMaxGravity)));
   p.mach = s.opt_number("mach", positive());
+  if (p.mach && *p.mach > kMaxMach)
+    s.fail("mach", "expected a number in (0, 50], got " + std::to_string(*p.mach));
   p.inflow_packing_fraction =
       s.number("inflow_packing_fraction", p.inflow_packing_fraction, {0.0, 0.6, true, false});
   p.body_diameters = s.opt_number("body_diameters", {2.0, 1e5, false, false});
   p.lattice_nx = static_cast<int>(s.integer("lattice_nx", p.lattice_nx, 2, 100000));
   p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
-  p.warmup = s.opt_number("warmup", non_negative());
-  p.averaging = s.number("averaging", p.averaging, positive());
+  p.warmup = s.opt_number("warmup", {0.0, kMaxFlowThroughs});
+  p.averaging = s.number("averaging", p.averaging, {0.0, kMaxFlowThroughs, true, false});
   p.replicas = static_cast<int>(s.integer("replicas", p.replicas, 1, 10000));
   p.snapshots = s.boolean("snapshots", p.snapshots);
   return p;

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <sstream>
 
 #include "params_parse.hpp"
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "yaml_structure.hpp"
 
 namespace scene {
 
@@ -20,6 +22,42 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kPackingAgreement = 0.005;
 // Disk area in units of the diameter squared.
 constexpr double kDiskArea = std::numbers::pi / 4.0;
+// Free-stream Mach ceiling: beyond it the perfect-gas references are
+// meaningless and the granular inflow's event rate (which grows with Mach)
+// makes a run take forever; Mach 1e308 overflowed into a hang.
+constexpr double kMaxMach = 50.0;
+// Body sizes and domain coordinates, in scene units: every stage works in
+// body lengths, so only the ratio matters; the bounds keep products such as
+// width x height far from overflow.
+constexpr double kMinBodySize = 1e-6;
+constexpr double kMaxBodySize = 1e6;
+constexpr double kMaxCoordinate = 1e9;
+// Box sides in particle diameters (a 1e7 x 1e7 box already holds ~1e14 disks,
+// far beyond any memory; the particle budget refuses it with an estimate).
+constexpr double kMaxBoxSide = 1e7;
+
+// A value already checked for its lower bound (> 0) that must also stay
+// <= hi: a separate check so that the lower-bound message stays as it was.
+double at_most(Section& s, const std::string& key, double v, double hi) {
+  if (v > hi) {
+    std::ostringstream os;
+    os << "expected a number in (0, " << hi << "], got " << v;
+    s.fail(key, os.str());
+  }
+  return v;
+}
+
+// The name becomes a folder name (pipeline studies) and a plot title: it
+// must not climb out of the output folder or carry control characters.
+constexpr std::size_t kMaxNameLength = 200;
+void check_name(Section& top, const std::string& name) {
+  const bool bad_char = std::any_of(name.begin(), name.end(), [](char c) {
+    return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  if (name.empty() || name == "." || name == ".." || bad_char || name.size() > kMaxNameLength)
+    top.fail("name", "expected a plain name (no '/', '\\', control characters, '.' or '..'; at most " +
+                         std::to_string(kMaxNameLength) + " characters)");
+}
 
 BodySpec parse_body(Section& s) {
   BodySpec b;
@@ -29,16 +67,22 @@ BodySpec parse_body(Section& s) {
   if (kind == "wedge") {
     b.kind = BodyKind::wedge;
     b.angle_deg = s.number("angle_deg", b.angle_deg, {0.0, 60.0, true, true});
-    b.length = s.number("length", b.length, positive());
+    b.length = s.number("length", b.length, {kMinBodySize, kMaxBodySize});
   } else if (kind == "disc") {
     b.kind = BodyKind::disc;
-    b.radius = s.number("radius", b.radius, positive());
+    b.radius = at_most(s, "radius", s.number("radius", b.radius, positive()), kMaxBodySize);
   } else if (kind == "apollo") {
     b.kind = BodyKind::apollo;
-    b.diameter = s.number("diameter", b.diameter, positive());
+    b.diameter = at_most(s, "diameter", s.number("diameter", b.diameter, positive()), kMaxBodySize);
   } else {
     b.kind = BodyKind::polygon;
     b.points = s.points("points");
+    for (const Vec2 q : b.points)
+      if (std::abs(q.x) > kMaxCoordinate || std::abs(q.y) > kMaxCoordinate) {
+        std::ostringstream os;
+        os << "expected coordinates within +-" << kMaxCoordinate << ", got [" << q.x << ", " << q.y << "]";
+        s.fail("points", os.str());
+      }
   }
   s.finish();
   if (b.kind == BodyKind::polygon) {
@@ -55,10 +99,11 @@ Domain parse_domain(Section& s) {
   Domain d;
   for (const char* k : {"xmin", "xmax", "ymin", "ymax"})
     if (!s.has(k)) s.fail(k, "required in a domain: section (xmin, xmax, ymin, ymax)");
-  d.xmin = s.number("xmin", 0);
-  d.xmax = s.number("xmax", 0);
-  d.ymin = s.number("ymin", 0);
-  d.ymax = s.number("ymax", 0);
+  const Range coordinate{-kMaxCoordinate, kMaxCoordinate};
+  d.xmin = s.number("xmin", 0, coordinate);
+  d.xmax = s.number("xmax", 0, coordinate);
+  d.ymin = s.number("ymin", 0, coordinate);
+  d.ymax = s.number("ymax", 0, coordinate);
   d.symmetric = s.boolean("symmetric", false);
   s.finish();
   if (!(d.xmax > d.xmin)) s.fail("xmax", "must exceed xmin");
@@ -69,8 +114,8 @@ Domain parse_domain(Section& s) {
 
 Box parse_box(Section& s) {
   Box b;
-  b.width = s.number("width", b.width, positive());
-  b.height = s.number("height", b.height, positive());
+  b.width = at_most(s, "width", s.number("width", b.width, positive()), kMaxBoxSide);
+  b.height = at_most(s, "height", s.number("height", b.height, positive()), kMaxBoxSide);
   b.periodic = s.boolean("periodic", b.periodic);
   s.finish();
   return b;
@@ -105,6 +150,7 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     top.fail("schema", "this build reads schema " + std::to_string(kSchemaVersion) + ", got " +
                            std::to_string(*schema));
   sc.name = top.string("name", std::filesystem::path(origin).stem().string());
+  if (top.has("name")) check_name(top, sc.name);
   const bool has_body = top.has("body"), has_box = top.has("box");
   {
     Section s = top.child("body");
@@ -119,7 +165,7 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
   {
     Section s = top.child("freestream");
     if (has_body && !s.has("mach")) top.fail("freestream", "required: freestream.mach");
-    sc.freestream.mach = s.number("mach", sc.freestream.mach, positive());
+    sc.freestream.mach = at_most(s, "mach", s.number("mach", sc.freestream.mach, positive()), kMaxMach);
     sc.freestream.gamma = s.number("gamma", sc.freestream.gamma, {1.0, 5.0 / 3.0, true, false});
     s.finish();
   }
@@ -163,13 +209,7 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
 }  // namespace
 
 Scene parse_scene(const std::string& yaml_text, const std::string& origin) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(origin + ":" + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
-  }
-  return parse_root(root, origin);
+  return parse_root(load_single_document(yaml_text, origin), origin);
 }
 
 Scene load_scene(const std::string& path) {
@@ -276,6 +316,15 @@ Domain scene_domain(const Scene& s) {
   if (d.symmetric && !g.symmetric)
     throw InputError(where + "symmetric domain, but the body is not symmetric about y = 0");
   return d;
+}
+
+void require_supersonic(const Scene& s, const std::string& stage) {
+  if (s.freestream.mach > 1.0) return;
+  std::ostringstream os;
+  os << s.source_file << ": key 'freestream.mach': " << stage
+     << " needs a supersonic free stream (Mach > 1, up to " << kMaxMach << ") to have a shock, got "
+     << s.freestream.mach;
+  throw InputError(os.str());
 }
 
 std::string to_yaml(const Scene& s) {

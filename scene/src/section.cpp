@@ -100,7 +100,11 @@ std::optional<std::int64_t> Section::opt_integer(const std::string& key, std::in
   double d = 0;
   if (!n.IsScalar() || !YAML::convert<double>::decode(n, d) || std::floor(d) != d)
     fail_node(n, key, "expected " + want + ", got " + scalar_text(n));
-  if (d < static_cast<double>(lo) || d > static_cast<double>(hi))
+  // 2^63 rounds to the double of INT64_MAX, so a plain d > hi lets it through
+  // and the cast below is then undefined: compare against 2^63 itself.
+  constexpr double kTwoTo63 = 9223372036854775808.0;
+  if (!(d < kTwoTo63) || !(d >= -kTwoTo63) || d < static_cast<double>(lo) ||
+      d > static_cast<double>(hi) || static_cast<std::int64_t>(d) > hi)
     fail_node(n, key, "expected " + want + ", got " + n.Scalar());
   return static_cast<std::int64_t>(d);
 }

@@ -1,6 +1,8 @@
 // shockfit: locate the shock in a lattice field (granular or CFD) along body
 // normals. A thin CLI over shockfit_core.
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -30,7 +32,27 @@ int main(int argc, char** argv) {
     }
     if (!std::filesystem::is_regular_file(fields_path)) throw scene::InputError(fields_path + ": fields file not found");
     const scene::Lattice lat = scene::read_vti(fields_path);
-    const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
+    // A lattice without a single finite value has no shock to find: that is
+    // a bad input file, not an empty result.
+    const bool any_finite = std::any_of(lat.fields.begin(), lat.fields.end(), [](const auto& kv) {
+      return std::any_of(kv.second.begin(), kv.second.end(), [](double v) { return std::isfinite(v); });
+    });
+    if (!any_finite) throw scene::InputError(fields_path + ": every value of every field is NaN or infinite");
+    // The locator's input errors are about this lattice: name its file.
+    const shockfit::ShockResult r = [&] {
+      try {
+        return shockfit::locate_shock(s, lat);
+      } catch (const scene::InputError& e) {
+        const std::string msg = e.what();
+        if (msg.rfind(fields_path, 0) == 0 || msg.rfind(scene_path, 0) == 0) throw;
+        throw scene::InputError(fields_path + ": " + msg);
+      }
+    }();
+    if (lat.has(r.field)) {
+      const auto& f = lat.field(r.field);
+      if (std::none_of(f.begin(), f.end(), [](double v) { return std::isfinite(v); }))
+        throw scene::InputError(fields_path + ": field '" + r.field + "' holds no finite value");
+    }
     shockfit::write_outputs(s, lat, r, out_dir);
     scene::log_line("shockfit: " + s.name + ": shock " + r.shock + " (field " + r.field + ", " +
                     std::to_string(r.accepted_count()) + " of " + std::to_string(r.stations.size()) +

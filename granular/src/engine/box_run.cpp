@@ -11,6 +11,7 @@
 
 #include "granular/box_setup.hpp"
 #include "granular/engine.hpp"
+#include "granular/particle_budget.hpp"
 #include "rng.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
@@ -27,6 +28,8 @@ constexpr double kCountAgreement = 0.005;
 constexpr double kDefaultCollisionsPerParticle = 100.0;
 // Collisions between progress updates / interrupt checks.
 constexpr std::uint64_t kChunk = 200000;
+// Hexagonal close packing of disks: no box start can hold more.
+constexpr double kClosePacking = 0.9069;
 
 std::string where(const scene::Scene& s) {
   return (s.source_file.empty() ? std::string("<scene>") : s.source_file) + ": granular: ";
@@ -61,7 +64,15 @@ BoxSetup resolve_box(const scene::Scene& s) {
     throw scene::InputError(where(s) + "a box scene needs particles or packing_fraction");
   }
   if (out.particles < 1) throw scene::InputError(where(s) + "no particles in the box");
+  check_particle_budget(static_cast<double>(out.particles), 1, where(s) + "key 'granular.particles': ");
   out.packing_fraction = static_cast<double>(out.particles) * disk / area;
+  if (!(out.packing_fraction < kClosePacking)) {
+    std::ostringstream m;
+    m << where(s) << "key 'granular.particles': " << out.particles << " disks in a " << b.width << " x " << b.height
+      << " box give packing fraction " << out.packing_fraction << ", at or beyond close packing (" << kClosePacking
+      << ")";
+    throw scene::InputError(m.str());
+  }
   out.restitution = g.restitution;
   out.restitution_wall = g.restitution_wall.value_or(g.restitution);
   out.tc = g.tc;
@@ -250,6 +261,7 @@ nlohmann::json run_box_scene(const scene::Scene& s, const RunOptions& o) {
   j["periodic"] = b.periodic;
   j["bytes_per_particle"] = eng.bytes_per_particle();
   j["interrupted"] = stopped;
+  j["partial"] = stopped;  // fewer collisions (or less time) than requested
   scene::make_dirs(o.out_dir);
   scene::write_json_atomic(o.out_dir + "/summary.json", j);
   return j;

@@ -1,11 +1,14 @@
 // The event loop: prediction, processing, cells. See docs/granular_engine.md.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 #include "contact_time.hpp"
 #include "engine_impl.hpp"
 #include "prefetch.hpp"
 #include "scene/cli.hpp"
+#include "scene/errors.hpp"
 
 namespace granular {
 
@@ -23,6 +26,15 @@ constexpr double kRecoveryTolerance = 1e-9;
 constexpr double kSegmentEndSlack = 1e-9;
 // Interrupt polling period (events).
 constexpr std::uint64_t kPollMask = 1023;
+// Inelastic collapse: with a restitution near 0 a cluster of disks collides
+// infinitely often in a finite time, so simulated time stops advancing and
+// the run never ends. It is recognised from the event rate: every
+// kCollapseWindow events, the events per disk per unit simulated time are
+// compared with kCollapseEventRate. Healthy systems stay below ~1e4 (a
+// dense gas at nu = 0.6, mean free path ~0.05 d, thermal speeds up to ~100
+// sqrt(T/m) at Mach 50); a collapsing one exceeds any bound.
+constexpr std::uint64_t kCollapseWindow = std::uint64_t{1} << 20;
+constexpr double kCollapseEventRate = 1e7;
 // Calendar look-ahead of the four prefetch stages, in calendar entries
 // (stale ones included): each stage one or two events (~0.3 us each at
 // N = 10^6) behind the previous one, so that the loads it builds on
@@ -671,6 +683,7 @@ void Engine::run_until(double t, std::uint64_t max_collisions) {
     if (!e || !(e->t <= t)) break;
     if (m.st.collisions >= max_collisions) return;
     if ((++m.events & kPollMask) == 0 && scene::interrupted()) return;
+    if (m.events - m.window_events >= kCollapseWindow) m.check_collapse();
     const std::uint32_t i = e->slot;
     m.now = e->t;
     m.cal.pop();
@@ -681,6 +694,23 @@ void Engine::run_until(double t, std::uint64_t max_collisions) {
   }
   if (m.st.collisions >= max_collisions) return;
   if (t != kNever && t > m.now) m.now = t;
+}
+
+void Engine::Impl::check_collapse() {
+  const double span = now - window_time;
+  const double disks = static_cast<double>(std::max<std::size_t>(p.size(), 1));
+  const double rate = static_cast<double>(events - window_events) / (disks * span);
+  if (!(span > 0.0) || rate > kCollapseEventRate) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "inelastic collapse at t = " << now << ": " << (events - window_events) << " events in a simulated time of "
+       << span << " (" << (span > 0.0 ? rate : std::numeric_limits<double>::infinity())
+       << " per disk per unit time, limit " << kCollapseEventRate
+       << "); raise granular.restitution or granular.tc (the TC model makes collisions within tc elastic)";
+    throw scene::RunError(os.str());
+  }
+  window_events = events;
+  window_time = now;
 }
 
 void Engine::run_collisions(std::uint64_t n) {

@@ -101,9 +101,14 @@ struct Engine::Impl {
   double energy_integral = 0.0;
   double energy_since = 0.0;  // time energy_integral is accumulated to
   std::uint64_t events = 0;
+  // Start of the current inelastic-collapse window (check_collapse()).
+  std::uint64_t window_events = 0;
+  double window_time = 0.0;
   std::uint64_t next_reorder = 0;  // collision count of the next spatial sort
   bool full_look_ahead = false;    // prefetch stages two to four (choose_look_ahead())
 
+  // RunError when the last window's event rate shows inelastic collapse.
+  void check_collapse();
   bool reorder();  // true when the slots were renumbered (and the calendar rebuilt)
   void choose_look_ahead();  // from cfg.look_ahead and the arrays' size (reorder(), load())
   void init(EngineConfig c);

@@ -206,6 +206,7 @@ FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const Repl
       {"simulated_time", sim_time},
       {"lattice", {{"nx", geometry.nx}, {"ny", geometry.ny}}},
       {"interrupted", interrupted},
+      {"partial", interrupted},  // averaged over less than the requested time
       {"flow", describe(f)},
       {"per_replica", per_replica},
   };

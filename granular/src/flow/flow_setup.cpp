@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "granular/particle_budget.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 
@@ -100,6 +101,13 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
   }
   f.fluid_area = fluid_scene * f.scale * f.scale;
   f.expected_particles = f.number_density * f.fluid_area;
+  {
+    // The simulated rectangle (larger than the domain for blunt bodies) is
+    // what the engine fills; each replica thread holds its own engine.
+    const double sim_area = f.sim_domain.width() * f.sim_domain.height() * f.scale * f.scale;
+    check_particle_budget(f.number_density * sim_area, 1,
+                          where + (p.body_diameters ? "key 'body_diameters': " : "key 'particles': "));
+  }
 
   FlowConfig& c = f.config;
   c.xmin = f.sim_domain.xmin * f.scale;

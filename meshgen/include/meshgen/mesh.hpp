@@ -34,6 +34,12 @@ struct MeshResult {
   nlohmann::json summary() const;
 };
 
+// The checks generate_mesh makes before it writes anything (and before gmsh
+// starts): a supersonic scene, finite sizes within range, and an estimated
+// cell count within meshgen's limit (5e6; InputError with the estimate).
+// Returns the estimated cell count.
+double check_mesh_request(const scene::Scene& s, const MeshRequest& r);
+
 // Writes OUT/mesh.msh, OUT/constant/polyMesh/, OUT/system/controlDict,
 // OUT/log.gmshToFoam, OUT/log.checkMesh, OUT/summary.json and OUT/mesh.png,
 // OUT/mesh_zoom.png (plots are best effort). InputError on a bad request

@@ -3,7 +3,10 @@
 // executable's main (CLI11 is header-only; only mains include this).
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
+#include <filesystem>
 #include <optional>
+#include <string>
 
 namespace scene {
 
@@ -19,7 +22,13 @@ inline std::optional<int> parse_cli(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    (void)app.exit(e);
+    // One line, as the contract asks (CLI11's exit() adds a "Run with
+    // --help" line); the message itself names the option.
+    std::string msg = e.what();
+    for (char& c : msg)
+      if (c == '\n') c = ' ';
+    const std::string name = std::filesystem::path(app.get_name()).filename().string();
+    std::fprintf(stderr, "%s: usage error: %s (see --help)\n", name.c_str(), msg.c_str());
     return kExitUsage;
   }
 }

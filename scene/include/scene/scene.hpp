@@ -74,6 +74,10 @@ double body_length(const BodySpec& body);
 // The free-stream domain for the scene's body (or its `domain:` override).
 Domain scene_domain(const Scene& s);
 
+// InputError "FILE: key 'freestream.mach': STAGE needs a supersonic free
+// stream ..." when Mach <= 1: no shock to predict, cluster at or compute.
+void require_supersonic(const Scene& s, const std::string& stage);
+
 // Resolved scene echoed as YAML (every default filled in), for logs and caches.
 std::string to_yaml(const Scene& s);
 // One top-level section of the resolved scene as YAML text ("" if absent):

@@ -1,0 +1,159 @@
+// The granular executable refuses scenes it cannot run (exit 2, one line
+// naming the file and key), stops inelastic collapse with a RunError instead
+// of hanging, and never replaces complete results with partial ones.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kExe = std::string(BIN_DIR) + "/granular";
+
+struct Result {
+  int code = -1;
+  std::string err;
+  double seconds = 0;
+};
+
+Result granular(const std::string& args) {
+  Result r;
+  const auto t0 = std::chrono::steady_clock::now();
+  FILE* p = popen((kExe + " " + args + " 2>&1 >/dev/null").c_str(), "r");
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), p)) r.err += buf.data();
+  const int st = pclose(p);
+  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+std::string fresh(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("granular_refuse_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+std::string write_scene(const std::string& dir, const std::string& text) {
+  const std::string path = dir + "/scene.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+void expect_refusal(const Result& r, const std::string& needle) {
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+}
+
+bool has_temporaries(const std::string& dir) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.find(".staging-") != std::string::npos || n.find(".tmp.") != std::string::npos)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST(Refuse, ExtremeValuesAndCountsAreRefusedWithTheRange) {
+  const std::string dir = fresh("extreme");
+  std::string s =
+      write_scene(dir, "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 1e308}\n");
+  expect_refusal(granular("run " + s + " --out " + dir + "/out"),
+                 s + ":2: key 'freestream.mach': expected a number in (0, 50]");
+  s = write_scene(dir,
+                  "box: {width: 100, height: 100}\ngranular: {particles: 9223372036854775808}\n");
+  expect_refusal(granular("run " + s + " --out " + dir + "/out"),
+                 s + ":2: key 'granular.particles'");
+  s = write_scene(dir, "box: {width: 1e6, height: 1e6}\ngranular: {particles: 1000000000}\n");
+  expect_refusal(granular("run " + s + " --out " + dir + "/out"),
+                 "the limit is 5e+07 disks per run");
+  s = write_scene(dir,
+                  "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\ngranular: "
+                  "{body_diameters: 1e5}\n");
+  expect_refusal(granular("run " + s + " --dry-run"),
+                 s + ": granular: key 'body_diameters': about");
+  s = write_scene(dir, "box: {width: 10, height: 10}\ngranular: {particles: 1000}\n");
+  expect_refusal(granular("run " + s + " --out " + dir + "/out"), "beyond close packing");
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+  EXPECT_FALSE(has_temporaries(dir));
+}
+
+TEST(Refuse, InelasticCollapseStopsWithARunError) {
+  // e = 0.01 without the TC model: the disks collapse into clusters that
+  // collide infinitely often in finite time; this used to hang for ever.
+  const std::string dir = fresh("collapse");
+  const std::string s = write_scene(dir,
+                                    "box: {width: 30, height: 30}\ngranular: {packing_fraction: "
+                                    "0.4, restitution: 0.01, tc: 0, time: 1000}\n");
+  const Result r = granular("run " + s + " --out " + dir + "/out");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("inelastic collapse"), std::string::npos) << r.err;
+  EXPECT_LT(r.seconds, 30.0);
+  EXPECT_FALSE(fs::exists(dir + "/out"));
+  EXPECT_FALSE(has_temporaries(dir));
+}
+
+TEST(Refuse, InterruptedRunPutsItsPartialResultsBesideCompleteOnes) {
+  const std::string dir = fresh("partial");
+  const std::string out = dir + "/out";
+  const std::string quick = write_scene(dir, R"(
+body: {kind: wedge, angle_deg: 10, length: 1.0}
+freestream: {mach: 3.0}
+granular: {body_diameters: 25, lattice_nx: 20, lattice_ny: 20, warmup: 0.2, averaging: 0.5, replicas: 1}
+)");
+  ASSERT_EQ(granular("run " + quick + " --out " + out).code, 0);
+  const std::string complete = [&] {
+    std::ifstream is(out + "/summary.json");
+    return std::string((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
+  }();
+  const std::string long_run = dir + "/long.yaml";
+  std::ofstream(long_run) << R"(
+body: {kind: wedge, angle_deg: 10, length: 1.0}
+freestream: {mach: 3.0}
+granular: {body_diameters: 25, lattice_nx: 20, lattice_ny: 20, warmup: 0.2, averaging: 100000, replicas: 1}
+)";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    execl(kExe.c_str(), kExe.c_str(), "run", long_run.c_str(), "--out", out.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // averaging by then
+  kill(pid, SIGINT);
+  int st = 0;
+  waitpid(pid, &st, 0);
+  ASSERT_TRUE(WIFEXITED(st));
+  EXPECT_EQ(WEXITSTATUS(st), 1);
+  std::ifstream is(out + "/summary.json");
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>()),
+            complete);
+  ASSERT_TRUE(fs::exists(out + ".partial/fields.vti"));
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out + ".partial/summary.json"));
+  EXPECT_TRUE(j["partial"].get<bool>());
+  EXPECT_FALSE(has_temporaries(dir));
+}
+
+TEST(Refuse, OutContainingTheSceneIsRefused) {
+  const std::string dir = fresh("overlap");
+  const std::string s =
+      write_scene(dir, "box: {width: 30, height: 30}\ngranular: {particles: 10}\n");
+  expect_refusal(granular("run " + s + " --out " + dir),
+                 "--out " + dir + ": equals, lies inside or contains the scene file");
+  EXPECT_TRUE(fs::exists(s));
+}

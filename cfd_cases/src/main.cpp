@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   int np = 1, nx = kDefaultLatticeNx, ny = 0;
   long cells = 5000;
   double grading = 1.0;
+  std::optional<double> lts_smoothing;
   bool lts = false, no_lts = false;
 
   CLI::App* run = app.add_subcommand("run", "instantiate the case in --out, run it to a steady state, write "
@@ -46,6 +47,9 @@ int main(int argc, char** argv) {
   run->add_option("--np", np, "MPI ranks (decomposePar, mpirun, reconstructPar)")->check(CLI::Range(1, 4096));
   auto* lts_flag = run->add_flag("--lts", lts, "local time stepping (ddt localEuler)");
   run->add_flag("--no-lts", no_lts, "time-accurate stepping")->excludes(lts_flag);
+  run->add_option("--lts-smoothing", lts_smoothing,
+                  "LTS rDeltaTSmoothingCoeff: how much a cell's local step may exceed its neighbour's")
+      ->check(CLI::PositiveNumber);
   run->add_option("--nx", nx, "lattice.vti cells along x")->check(CLI::Range(1, 100000));
   run->add_option("--ny", ny, "lattice.vti cells along y (default: from the domain's aspect ratio)")
       ->check(CLI::Range(0, 100000));
@@ -80,6 +84,7 @@ int main(int argc, char** argv) {
     o.np = np;
     if (lts) o.local_time_stepping = true;
     if (no_lts) o.local_time_stepping = false;
+    o.lts_smoothing = lts_smoothing;
     const cfd::CaseResult r = cfd::run_case(s, mesh_dir, out, o);
     scene::write_vti(cfd::resample_to_lattice(s, r.case_dir, nx, lattice_ny(s, nx, ny)), r.case_dir + "/lattice.vti");
     std::cout << r.summary().dump(2) << "\n";

@@ -31,9 +31,13 @@ struct CaseSettings {
 // rhoCentralFoam's rDeltaTSmoothingCoeff under LTS: a cell's local step may
 // exceed a neighbour's by this fraction at most. OpenFOAM's default, 0.02,
 // lets the step grow only 2% per cell away from the smallest cell, so on a
-// grid clustered at the shock most of the domain marches at nearly the
-// smallest step and LTS gains little (docs/bench_cfd.md has the numbers).
-inline constexpr double kLtsSmoothingCoeff = 0.02;
+// graded grid most of the domain marches near the smallest step, and the
+// smoothing's own cost (a wave over the mesh each step) ate the rest of the
+// gain: no CPU saved on the clustered M3/10 grid. At 1 (a step at most twice
+// its neighbour's; meshgen grades cells by 1.2) LTS took 2.5-3.5x less CPU
+// on the finest grids of both families with the same wall pressure to 0.1%
+// (docs/bench_cfd.md); 0.2 was in between.
+inline constexpr double kLtsSmoothingCoeff = 1.0;
 
 // Whether the flow starts at rest (cfd.start, resolved for "auto").
 bool start_at_rest(const scene::Scene& s);

@@ -34,6 +34,7 @@ constexpr double kPollSeconds = 0.05;
 constexpr double kStopGraceSeconds = 30.0;
 // Slack when comparing a written time with logged step times.
 constexpr double kTimeSlack = 1e-9;
+
 // Stopping the solver through controlDict (stopAt noWriteNow) can leave a
 // time directory that holds only `uniform/`: the stop lands after the time
 // was opened for writing but before any field was written. Such a directory

@@ -67,7 +67,8 @@ double SteadyState::progress(const HistoryRow& row) const {
 
 void SteadyState::add(const HistoryRow& row) {
   rows_.push_back(row);
-  const char* unit = c_.clock == SteadyClock::iterations ? "iteration windows" : "flow-throughs";
+  const char* unit =
+      c_.clock == SteadyClock::iterations ? "iteration flow-throughs" : "flow-throughs";
   const double at = progress(row);
   const bool early = at < c_.min_time - kMinTimeSlack;
   const bool below_tol = row.drho_l2 < c_.steady_tol && row.dforce < c_.force_tol;

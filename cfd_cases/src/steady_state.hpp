@@ -13,17 +13,19 @@ namespace cfd {
 
 // How progress towards min_time is counted.
 //  - flow_throughs: the row's simulated time (time-accurate stepping).
-//  - iterations: the row's solver steps, in windows of steps_per_flow_through
-//    iterations. Under local time stepping the pseudo-time says nothing about
-//    how far the solution has travelled (each cell takes its own step), the
-//    iteration count does: at local Courant number maxCo a signal crosses
-//    the domain in about steps_per_flow_through iterations.
+//  - iterations: the row's solver steps over steps_per_flow_through
+//    ("iteration flow-throughs"); one row per window of iterations. Under
+//    local time stepping the pseudo-time says nothing about how far the
+//    solution has travelled (each cell takes its own step), the iteration
+//    count does: at local Courant number maxCo a signal crosses the domain
+//    in about steps_per_flow_through iterations.
 enum class SteadyClock { flow_throughs, iterations };
 
 struct SteadyCriteria {
-  double steady_tol = 0.05;  // L2 density change per flow-through (or window), relative to rho_inf
-  double force_tol = 2e-3;   // relative body-force change per flow-through (or window)
-  double min_time = 1.0;     // flow-throughs (or iteration windows) before steady may be declared
+  // Per flow-through (iterations clock: per iteration flow-through).
+  double steady_tol = 0.05;  // L2 density change, relative to rho_inf
+  double force_tol = 2e-3;   // relative body-force change
+  double min_time = 1.0;     // (iteration) flow-throughs before steady may be declared
   int steady_checks = 2;     // consecutive rows that must pass
   SteadyClock clock = SteadyClock::flow_throughs;
   long steps_per_flow_through = 0;  // iterations clock only
@@ -31,7 +33,7 @@ struct SteadyCriteria {
   // The scene's rule for time-accurate runs.
   static SteadyCriteria time_accurate(const scene::CfdParams& p);
   // The scene's rule under local time stepping: the same tolerances, with
-  // progress counted in windows of `steps_per_flow_through` iterations.
+  // progress counted in iterations, steps_per_flow_through per flow-through.
   static SteadyCriteria iteration_windows(const scene::CfdParams& p, long steps_per_flow_through);
 };
 

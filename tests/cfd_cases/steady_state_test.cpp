@@ -150,11 +150,11 @@ TEST(SteadyState, IterationClockCountsStepsNotPseudoTime) {
   EXPECT_DOUBLE_EQ(lts.progress(rows[4]), 1.0);
 }
 
-TEST(SteadyState, IterationClockTooEarlyNamesWindows) {
+TEST(SteadyState, IterationClockTooEarlyCountsIterations) {
   const auto rows = history(1, [](int) { return Sample{1e-3, 1e-4}; });
   cfd::SteadyState lts(cfd::SteadyCriteria::iteration_windows(defaults(), kStepsPerFlowThrough));
   lts.add(rows[0]);
-  EXPECT_NE(lts.why().find("iteration windows"), std::string::npos) << lts.why();
+  EXPECT_NE(lts.why().find("iteration flow-throughs"), std::string::npos) << lts.why();
 }
 
 TEST(SteadyState, CriteriaFollowTheScene) {

@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
   auto* lts_flag = run->add_flag("--lts", lts, "local time stepping (ddt localEuler)");
   run->add_flag("--no-lts", no_lts, "time-accurate stepping")->excludes(lts_flag);
   run->add_option("--lts-smoothing", lts_smoothing,
-                  "LTS rDeltaTSmoothingCoeff: how much a cell's local step may exceed its neighbour's")
+                  "LTS rDeltaTSmoothingCoeff: how much a cell's local step may exceed its "
+                  "neighbour's")
       ->check(CLI::PositiveNumber);
   run->add_option("--nx", nx, "lattice.vti cells along x")->check(CLI::Range(1, 100000));
   run->add_option("--ny", ny, "lattice.vti cells along y (default: from the domain's aspect ratio)")

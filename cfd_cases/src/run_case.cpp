@@ -144,7 +144,8 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   LogFollower log(solver.log_path());
   scene::Progress progress("rhoCentralFoam " + s.name, p.end_time, "flow-throughs");
   std::optional<Snapshot> prev;
-  SteadyState rule(cs.lts ? SteadyCriteria::iteration_windows(p, lts_steps) : SteadyCriteria::time_accurate(p));
+  SteadyState rule(cs.lts ? SteadyCriteria::iteration_windows(p, lts_steps)
+                          : SteadyCriteria::time_accurate(p));
   double processed = 0.0;
   bool stop_requested = false, user_stop = false;
   Clock::time_point stop_at;

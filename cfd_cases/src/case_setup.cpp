@@ -128,6 +128,21 @@ double free_stream_time_step(const Mesh2D& m, const Freestream& f, double max_co
   return dt;
 }
 
+long lts_steps_per_flow_through(const Mesh2D& m, const Freestream& f, double max_co, double width) {
+  const double c = std::sqrt(f.T);
+  double area = 0, weighted = 0;
+  for (std::size_t k = 0; k < m.cells(); ++k) {
+    double sum = 0;
+    for (const auto& [len, n] : m.cell_edges[k]) sum += len * (std::abs(f.mach * n.x) + c);
+    if (!(sum > 0)) continue;
+    const double dt = 2.0 * max_co * m.cell_area[k] / sum;
+    area += m.cell_area[k];
+    weighted += m.cell_area[k] / dt;
+  }
+  if (!(area > 0) || !(f.mach > 0)) return 1;
+  return std::max(1L, std::lround(width * weighted / (area * f.mach)));
+}
+
 void check_patches(const Mesh2D& m, const std::string& mesh_dir) {
   static const std::vector<std::string> roles{"inlet", "outlet", "top", "bottom", "body"};
   bool has_body = false, has_inlet = false;
@@ -175,6 +190,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"WRITE_INTERVAL", cs.lts ? std::to_string(cs.write_steps) : num(cs.write_interval)},
       {"ADJUST_TIME_STEP", cs.lts ? "no" : "yes"},
       {"MAX_CO", num(p.max_co)},
+      {"RDELTAT_SMOOTHING", num(cs.lts_smoothing)},
       {"MAX_DELTA_T", num(cs.flow_through)},
       {"FLUX_SCHEME", p.flux_scheme},
       {"DDT_SCHEME", cs.lts ? "localEuler" : "Euler"},

@@ -25,7 +25,19 @@ struct CaseSettings {
   double end_time = 0.0;       // body lengths / c
   double write_interval = 0.0; // body lengths / c
   long write_steps = 0;        // LTS: steps between written times
+  double lts_smoothing = 0.0;  // LTS: rDeltaTSmoothingCoeff (controlDict)
 };
+
+// rhoCentralFoam's rDeltaTSmoothingCoeff under LTS: a cell's local step may
+// exceed a neighbour's by this fraction at most. OpenFOAM's default, 0.02,
+// lets the step grow only 2% per cell away from the smallest cell, so on a
+// graded grid most of the domain marches near the smallest step, and the
+// smoothing's own cost (a wave over the mesh each step) ate the rest of the
+// gain: no CPU saved on the clustered M3/10 grid. At 1 (a step at most twice
+// its neighbour's; meshgen grades cells by 1.2) LTS took 2.5-3.5x less CPU
+// on the finest grids of both families with the same wall pressure to 0.1%
+// (docs/bench_cfd.md); 0.2 was in between.
+inline constexpr double kLtsSmoothingCoeff = 1.0;
 
 // Whether the flow starts at rest (cfd.start, resolved for "auto").
 bool start_at_rest(const scene::Scene& s);
@@ -40,6 +52,13 @@ std::string fill_placeholders(const std::string& text, const std::map<std::strin
 // number max_co, using rhoCentralFoam's definition
 // Co = 0.5 dt sum_faces (|U.Sf| + c |Sf|) / V.
 double free_stream_time_step(const Mesh2D& m, const Freestream& f, double max_co);
+
+// Iterations a signal needs to cross the domain (length `width`) at the
+// free-stream speed when every cell takes its own free-stream step at
+// max_co (local time stepping without smoothing): width times the
+// area-weighted mean of 1 / (U dt_cell). On a uniform grid this is the
+// time-accurate steps per flow-through; on a clustered one, far fewer.
+long lts_steps_per_flow_through(const Mesh2D& m, const Freestream& f, double max_co, double width);
 
 // Checks the mesh patches against the roles the templates know.
 void check_patches(const Mesh2D& m, const std::string& mesh_dir);

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   int np = 1, nx = kDefaultLatticeNx, ny = 0;
   long cells = 5000;
   double grading = 1.0;
+  std::optional<double> lts_smoothing;
   bool lts = false, no_lts = false;
 
   CLI::App* run = app.add_subcommand("run", "instantiate the case in --out, run it to a steady state, write "
@@ -56,6 +57,10 @@ int main(int argc, char** argv) {
   run->add_option("--np", np, "MPI ranks (decomposePar, mpirun, reconstructPar)")->check(CLI::Range(1, 4096));
   auto* lts_flag = run->add_flag("--lts", lts, "local time stepping (ddt localEuler)");
   run->add_flag("--no-lts", no_lts, "time-accurate stepping")->excludes(lts_flag);
+  run->add_option("--lts-smoothing", lts_smoothing,
+                  "LTS rDeltaTSmoothingCoeff: how much a cell's local step may exceed its "
+                  "neighbour's")
+      ->check(CLI::PositiveNumber);
   run->add_option("--nx", nx, "lattice.vti cells along x")->check(CLI::Range(1, 100000));
   run->add_option("--ny", ny, "lattice.vti cells along y (default: from the domain's aspect ratio)")
       ->check(CLI::Range(0, 100000));
@@ -96,6 +101,7 @@ int main(int argc, char** argv) {
     // The case is built beside --out and swapped in only when it finished:
     // a failed or interrupted run keeps the previous good case in --out and
     // leaves its own beside it as OUT.failed for inspection.
+    o.lts_smoothing = lts_smoothing;
     scene::StagedDir staged(out);
     cfd::CaseResult r;
     try {

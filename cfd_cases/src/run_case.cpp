@@ -15,6 +15,7 @@
 #include "case_setup.hpp"
 #include "foam_process.hpp"
 #include "log_follower.hpp"
+#include "steady_state.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -33,8 +34,6 @@ constexpr double kPollSeconds = 0.05;
 constexpr double kStopGraceSeconds = 30.0;
 // Slack when comparing a written time with logged step times.
 constexpr double kTimeSlack = 1e-9;
-// Slack on min_time, in flow-through times (written times are rounded).
-constexpr double kMinTimeSlack = 1e-6;
 
 // Stopping the solver through controlDict (stopAt noWriteNow) can leave a
 // time directory that holds only `uniform/`: the stop lands after the time
@@ -48,34 +47,6 @@ void remove_incomplete_times(const std::string& case_dir) {
   for (const auto& d : dirs)
     for (const TimeDir& t : time_dirs(d))
       if (!fs::exists(d + "/" + t.name + "/rho")) fs::remove_all(d + "/" + t.name);
-}
-
-// Checks per plateau window, and how much the density change must still be
-// falling from one window to the next to count as converging.
-constexpr std::size_t kPlateauChecks = 5;
-constexpr double kStillFalling = 0.8;
-
-// A converged shock solution does not bring the density change to zero: cells
-// in the captured shock flicker (rhoCentralFoam's limiter), leaving a floor
-// that grows with shock strength (0.03 per flow-through at Mach 3, 0.05 at
-// Mach 5, 0.15 at Mach 8) while the body force is steady to 1e-3. So a run is
-// also steady once the density change has stopped falling (the mean over the
-// last window is no less than kStillFalling times the window before's) and
-// the body force over the last window stays within force_tol of its mean.
-bool at_noise_floor(const std::vector<HistoryRow>& rows, double force_tol) {
-  if (rows.size() < 2 * kPlateauChecks) return false;
-  const auto last = rows.end() - static_cast<std::ptrdiff_t>(kPlateauChecks);
-  const auto before = last - static_cast<std::ptrdiff_t>(kPlateauChecks);
-  double now = 0, prev = 0, fmin = 1e300, fmax = -1e300, fmean = 0;
-  for (auto it = last; it != rows.end(); ++it) {
-    now += it->drho_l2;
-    const double f = scene::norm(it->force);
-    fmin = std::min(fmin, f);
-    fmax = std::max(fmax, f);
-    fmean += f / static_cast<double>(kPlateauChecks);
-  }
-  for (auto it = before; it != last; ++it) prev += it->drho_l2;
-  return now >= kStillFalling * prev && fmax - fmin <= force_tol * std::abs(fmean);
 }
 
 double seconds_since(Clock::time_point t0) {
@@ -144,11 +115,18 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   cs.lts = o.local_time_stepping.value_or(p.local_time_stepping);
   cs.flow_through = d.width() / f.mach;
   cs.dt_ref = free_stream_time_step(mesh, f, p.max_co);
-  cs.end_time = p.end_time * cs.flow_through;
-  cs.write_interval = p.write_interval * cs.flow_through;
-  // LTS marches in pseudo-time: each step advances it by the global step the
-  // free stream would allow (dt_ref), so "flow-through times" compare with
-  // time-accurate runs step for step.
+  cs.lts_smoothing = o.lts_smoothing.value_or(kLtsSmoothingCoeff);
+  // LTS marches in pseudo-time, each step advancing it by dt_ref, the
+  // smallest cell's step; a flow-through of pseudo-time is then as many
+  // steps as a time-accurate run takes, whatever the local steps gain. So
+  // under LTS a "flow-through" is counted in iterations (the steps a signal
+  // at the local Courant number needs to cross the domain), and end_time,
+  // the written times (one per window of write_steps iterations) and the
+  // per-flow-through measures all use that count.
+  const long lts_steps = lts_steps_per_flow_through(mesh, f, p.max_co, d.width());
+  const double norm_time = cs.lts ? static_cast<double>(lts_steps) * cs.dt_ref : cs.flow_through;
+  cs.end_time = p.end_time * norm_time;
+  cs.write_interval = p.write_interval * norm_time;
   cs.write_steps = std::max(1L, std::lround(cs.write_interval / cs.dt_ref));
   const std::string cdir = case_abs.string();
   write_case(s, mesh_abs.string(), cdir, cs);
@@ -170,9 +148,9 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   LogFollower log(solver.log_path());
   scene::Progress progress("rhoCentralFoam " + s.name, p.end_time, "flow-throughs");
   std::optional<Snapshot> prev;
-  std::vector<HistoryRow> rows;
+  SteadyState rule(cs.lts ? SteadyCriteria::iteration_windows(p, lts_steps)
+                          : SteadyCriteria::time_accurate(p));
   double processed = 0.0;
-  int consecutive = 0;
   bool stop_requested = false, user_stop = false;
   Clock::time_point stop_at;
   auto request_stop = [&] {
@@ -203,15 +181,11 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
         fail_run(e.what(), solver.log_path());
       }
       if (prev) {
-        HistoryRow row = compare(*prev, snap, reader.parts(), f.rho(), cs.flow_through);
+        HistoryRow row = compare(*prev, snap, reader.parts(), f.rho(), norm_time);
         row.wall_seconds = seconds_since(t0);
         row.steps = log.steps_upto(t.time);
-        rows.push_back(row);
-        const bool ok = row.flow_throughs >= p.min_time - kMinTimeSlack &&
-                        ((row.drho_l2 < p.steady_tol && row.dforce < p.force_tol) ||
-                         at_noise_floor(rows, p.force_tol));
-        consecutive = ok ? consecutive + 1 : 0;
-        if (consecutive >= p.steady_checks && !r.steady_state_reached) {
+        rule.add(row);
+        if (rule.steady() && !r.steady_state_reached) {
           r.steady_state_reached = true;
           request_stop();
         }
@@ -219,7 +193,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
       }
       prev = std::move(snap);
       processed = t.time;
-      if (!rows.empty()) write_history(cdir, rows, p.steady_tol, p.force_tol, false);
+      if (!rule.rows().empty()) write_history(cdir, rule.rows(), p.steady_tol, p.force_tol, false);
     }
     if (exited) break;
     if (scene::interrupted() && !stop_requested) {
@@ -237,19 +211,20 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   // Ready for a rerun by hand (Allrun) from the latest time.
   set_control(cdir, "stopAt", "endTime");
   if (rc != 0 && !stop_requested) fail_run(diagnose(rc, solver.log_path()), solver.log_path());
-  progress.finish(r.steady_state_reached ? "steady" : "not steady");
+  progress.finish(r.steady_state_reached ? rule.why() : "not steady; " + rule.why());
   if (user_stop) throw scene::RunError("interrupted; the case is kept in " + cdir);
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "reconstructPar", {"-latestTime"}).cpu_seconds;
-  write_history(cdir, rows, p.steady_tol, p.force_tol, true);
+  write_history(cdir, rule.rows(), p.steady_tol, p.force_tol, true);
   if (prev) {
     r.sim_time = prev->time;
     r.wall_pressure_ratio = prev->wall_pressure_ratio;
   }
-  if (!rows.empty()) {
-    r.final_density_change_l2 = rows.back().drho_l2;
-    r.final_density_change_max = rows.back().drho_max;
-    r.final_force_change = rows.back().dforce;
+  if (!rule.rows().empty()) {
+    r.final_density_change_l2 = rule.rows().back().drho_l2;
+    r.final_density_change_max = rule.rows().back().drho_max;
+    r.final_force_change = rule.rows().back().dforce;
   }
+
   scene::write_json_atomic(cdir + "/summary.json", r.summary());
   return r;
 }

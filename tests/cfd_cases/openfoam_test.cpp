@@ -34,7 +34,9 @@ double exact_ratio(double mach, double deg) {
 }
 
 TEST(Case, InstantiationFollowsTheScene) {
-  const scene::Scene s = cfd_test::wedge_scene(3.0, 10.0, "{max_co: 0.25, end_time: 0.2, write_interval: 0.1}");
+  // Time-accurate: sim_time is checked against the flow-through time.
+  const scene::Scene s = cfd_test::wedge_scene(
+      3.0, 10.0, "{max_co: 0.25, end_time: 0.2, write_interval: 0.1, local_time_stepping: false}");
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 2000, d + "/mesh");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
@@ -141,7 +143,9 @@ TEST(Case, LocalTimeSteppingReachesTheSameState) {
   const scene::Scene s = cfd_test::wedge_scene(3.0, 10.0, "{end_time: 6}");
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 3000, d + "/mesh");
-  const cfd::CaseResult euler = cfd::run_case(s, d + "/mesh", d + "/euler", {});
+  cfd::CaseOptions ta;
+  ta.local_time_stepping = false;
+  const cfd::CaseResult euler = cfd::run_case(s, d + "/mesh", d + "/euler", ta);
   cfd::CaseOptions o;
   o.local_time_stepping = true;
   const cfd::CaseResult lts = cfd::run_case(s, d + "/mesh", d + "/lts", o);

@@ -17,6 +17,7 @@ namespace cfd {
 struct CaseOptions {
   int np = 1;                                 // overrides scene cfd.np when > 1
   std::optional<bool> local_time_stepping;    // overrides scene cfd.local_time_stepping
+  std::optional<double> lts_smoothing;        // LTS rDeltaTSmoothingCoeff (default: case_setup.hpp)
 };
 
 struct CaseResult {

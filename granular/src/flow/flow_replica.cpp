@@ -6,6 +6,7 @@
 
 #include "scene/cli.hpp"
 #include "scene/io.hpp"
+#include "steady_state.hpp"
 
 namespace granular {
 
@@ -23,19 +24,11 @@ constexpr double kMaxWarmupFlowThroughs = 8.0;
 constexpr double kCheckFlowThroughs = 0.25;
 constexpr int kCountsPerCheck = 8;
 constexpr double kWindowFlowThroughs = 0.5;
-// Two windows whose mean counts differ by less than 2% (or by less than
-// their own statistical noise, for small systems) count as steady.
-constexpr double kSteadyRelTol = 0.02;
-constexpr double kSteadyNoiseSigmas = 2.0;
+// The steady test itself (window comparison, tolerances) is
+// FlowSteadyState, steady_state.hpp.
 // Snapshots while averaging: a disk at the inflow speed crosses about half
 // a lattice cell between two, so consecutive snapshots are not redundant.
 constexpr double kSampleCellFraction = 0.5;
-
-double mean_of(const std::vector<double>& x, std::size_t from, std::size_t to) {
-  double s = 0;
-  for (std::size_t k = from; k < to; ++k) s += x[k];
-  return s / static_cast<double>(to - from);
-}
 
 void write_particles(const FlowSimulation& sim, const FlowSetup& f, const std::string& path) {
   scene::write_stream_atomic(path, [&](std::ostream& os) {
@@ -51,12 +44,8 @@ void write_particles(const FlowSimulation& sim, const FlowSetup& f, const std::s
 }  // namespace
 
 bool counts_steady(const std::vector<double>& counts, std::size_t window) {
-  if (window == 0 || counts.size() < 2 * window) return false;
-  const std::size_t n = counts.size();
-  const double a = mean_of(counts, n - 2 * window, n - window);
-  const double b = mean_of(counts, n - window, n);
-  const double noise = kSteadyNoiseSigmas * std::sqrt(std::max(b, 1.0) / static_cast<double>(window));
-  return std::abs(b - a) <= std::max(kSteadyRelTol * b, noise);
+  const FlowSteadyCriteria c;
+  return counts_settled(counts, window, c.rel_tol, c.noise_sigmas);
 }
 
 ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan,
@@ -84,16 +73,18 @@ ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, c
     out.steady_detected = false;
   } else {
     const double dt = kCheckFlowThroughs * tau / kCountsPerCheck;
-    const auto window = static_cast<std::size_t>(std::lround(kWindowFlowThroughs * tau / dt));
-    std::vector<double> counts;
+    FlowSteadyCriteria c;
+    c.window = static_cast<std::size_t>(std::lround(kWindowFlowThroughs * tau / dt));
+    c.check_every = static_cast<std::size_t>(kCountsPerCheck);
+    c.min_time = kMinWarmupFlowThroughs * tau - 0.5 * dt;
+    FlowSteadyState rule(c);
     int step = 0;
     while (!scene::interrupted()) {
       ++step;
       advance(step * dt);
-      counts.push_back(static_cast<double>(sim.stats().particles));
       const double t = sim.time();
-      if (step % kCountsPerCheck != 0 || t < kMinWarmupFlowThroughs * tau - 0.5 * dt) continue;
-      if (counts_steady(counts, window)) {
+      if (!rule.add(t, static_cast<double>(sim.stats().particles))) continue;
+      if (rule.steady()) {
         out.steady_detected = true;
         break;
       }

@@ -1,4 +1,4 @@
-// Restitution models: the fit and the leave-one-out choice.
+// Restitution models: the fit, the leave-one-out choice, and the training set.
 #include "pipeline/restitution_fit.hpp"
 
 #include <gtest/gtest.h>
@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "pipeline/calibration_training.hpp"
+#include "pipeline/studies.hpp"
 
 namespace {
 using pipeline::RestitutionModel;
@@ -100,4 +102,33 @@ TEST(RestitutionFit, LeaveOneOutPredictionIgnoresThePoint) {
   const auto e = pipeline::leave_one_out_restitution(pts, RestitutionModel::inverse_mach2, 4);
   ASSERT_TRUE(e.has_value());
   EXPECT_NEAR(*e, 0.956 + 0.25 / (pts[4].mach * pts[4].mach), kCoefficientTolerance);
+}
+
+TEST(CalibrationTraining, DefaultSetAvoidsTheCaseStudies) {
+  const pipeline::CalibrateOptions o;
+  std::vector<std::string> wedges;
+  for (const auto& p : pipeline::case_study_scenes()) wedges.push_back(p);
+  const auto cases = pipeline::wedge_points(wedges);
+  ASSERT_GE(cases.size(), 3u);  // M3/10, M4/15, M5/20
+  const auto train = pipeline::training_wedges(o.machs, o.angles_deg, 1.4, cases);
+  EXPECT_GE(train.size(), 8u);
+  for (const auto& t : train)
+    for (const auto& c : cases)
+      EXPECT_FALSE(pipeline::same_wedge(t, c)) << t.mach << " / " << t.angle_deg;
+  // Even a grid through a case study leaves it out.
+  const auto through = pipeline::training_wedges({3.0, 4.0}, {10.0, 15.0}, 1.4, cases);
+  ASSERT_EQ(through.size(), 2u);  // M3/15, M4/10
+  for (const auto& t : through)
+    for (const auto& c : cases) EXPECT_FALSE(pipeline::same_wedge(t, c));
+}
+
+TEST(CalibrationTraining, DetachedWedgesAreLeftOut) {
+  // Mach 1.5 detaches above ~12 deg at gamma 1.4.
+  const auto t = pipeline::training_wedges({1.5}, {8.0, 20.0}, 1.4, {});
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].angle_deg, 8.0);
+  const auto s = pipeline::training_scene(t[0]);
+  ASSERT_TRUE(s.body.has_value());
+  EXPECT_DOUBLE_EQ(s.freestream.mach, 1.5);
+  EXPECT_FALSE(s.granular.restitution_given);  // granular settings at their defaults
 }

@@ -1,10 +1,12 @@
-// Calibration table: round trip and interpolation.
+// Calibration table: round trip, interpolation (old tables) and the fitted model; the out-of-sample summary.
+#include "pipeline/calibration.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "pipeline/calibration.hpp"
+#include "pipeline/calibration_report.hpp"
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -154,4 +156,28 @@ TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
   EXPECT_NE(message(entries + "model: quadratic\nfits: []\n").find(path),
             std::string::npos);     // names the file
   EXPECT_EQ(message(entries), "");  // an old table (entries only) is fine
+}
+
+TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
+  nlohmann::json c = {
+      {"model", "inverse_mach2"},
+      {"candidates",
+       {{{"model", "inverse_mach2"},
+         {"formula", "e = c0 + c1/M^2"},
+         {"coefficients", {0.95, 0.3}},
+         {"residual_sd", 0.002},
+         {"loo_rms", 0.003}}}},
+      {"points",
+       {{{"loo_angle_error_deg", 0.3}},
+        {{"loo_angle_error_deg", -0.4}},
+        {{"restitution", nullptr}}}},
+      {"case_studies",
+       {{{"angle_error_deg", 1.0}}, {{"angle_error_deg", 9.0}, {"in_sample", true}}}}};
+  const auto s = pipeline::out_of_sample_summary(c);
+  EXPECT_EQ(s["leave_one_out"]["n"], 2);
+  EXPECT_NEAR(s["leave_one_out"]["rms_deg"].get<double>(), std::sqrt((0.09 + 0.16) / 2), 1e-12);
+  EXPECT_NEAR(s["leave_one_out"]["max_abs_deg"].get<double>(), 0.4, 1e-12);
+  EXPECT_EQ(s["case_studies"]["n"], 1);  // the in-sample case study does not count
+  EXPECT_NEAR(s["case_studies"]["max_abs_deg"].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(s["residual_sd_restitution"].get<double>(), 0.002, 1e-15);
 }

@@ -12,6 +12,7 @@
 #include "pipeline/calibration_report.hpp"
 #include "pipeline/calibration_training.hpp"
 #include "pipeline/plot.hpp"
+#include "pipeline/restitution_crossing.hpp"
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -39,67 +40,6 @@ constexpr std::uint64_t kCaseStudySeedOffset = 2000;
 // e is rounded like `pipeline run` rounds the table's value, so a case study
 // here runs at the e the pipeline would use.
 constexpr double kRestitutionStep = 1e-6;
-
-struct Point {
-  double e, angle, ci;
-};
-
-// A sweep point counts only when the fit found a physical attached angle with
-// a usable interval (a failed fit can return any number).
-constexpr double kMaxUsableCiDeg = 5.0;
-bool usable(const Point& p) {
-  return std::isfinite(p.angle) && p.angle > 0.0 && p.angle < 90.0 && std::isfinite(p.ci) &&
-         p.ci < kMaxUsableCiDeg;
-}
-
-// Linear interpolation of e where angle(e) crosses `target`, scanning from
-// e = 1 downwards (the physically relevant, least dissipative crossing).
-// The 95% half-width on e propagates the angle intervals through the local slope.
-bool crossing(const std::vector<Point>& pts, double target, double& e, double& e_ci) {
-  if (pts.size() < 2) return false;
-  for (std::size_t k = pts.size() - 1; k >= 1; --k) {
-    const Point a = pts[k - 1], b = pts[k];
-    if (!usable(a) || !usable(b)) continue;
-    if ((a.angle - target) * (b.angle - target) <= 0 && a.angle != b.angle) {
-      const double slope = (b.angle - a.angle) / (b.e - a.e);
-      e = a.e + (target - a.angle) / slope;
-      e_ci = std::abs(0.5 * (a.ci + b.ci) / slope);
-      return true;
-    }
-  }
-  return false;
-}
-
-// The next e to run for a sharper crossing: the midpoint of the bracketing
-// interval (a chord across a convex angle(e) puts the crossing too low), or
-// one sweep step below the lowest e when every angle is still above the gas
-// angle. nullopt when the interval is already at the rounding step, or when
-// the angle stays below the gas angle even at the top of the sweep (no e <= 1
-// can help).
-constexpr double kRefineStep = 1e-4;  // refined e are rounded to this (cache directory names)
-std::optional<double> refinement(const std::vector<Point>& pts, double target) {
-  double e = 0, e_ci = 0;
-  if (crossing(pts, target, e, e_ci)) {
-    for (std::size_t k = pts.size() - 1; k >= 1; --k) {
-      const Point a = pts[k - 1], b = pts[k];
-      if (a.e <= e && e <= b.e && usable(a) && usable(b)) {
-        const double mid = std::round(0.5 * (a.e + b.e) / kRefineStep) * kRefineStep;
-        if (mid <= a.e || mid >= b.e) return std::nullopt;
-        return mid;
-      }
-    }
-    return std::nullopt;
-  }
-  std::vector<Point> ok;
-  for (const auto& p : pts)
-    if (usable(p)) ok.push_back(p);
-  if (ok.size() < 2) return std::nullopt;
-  for (const auto& p : ok)
-    if (p.angle <= target) return std::nullopt;  // not everything above: nothing to extend towards
-  const double below = std::round((2 * ok[0].e - ok[1].e) / kRefineStep) * kRefineStep;
-  if (!(below > 0)) return std::nullopt;
-  return below;
-}
 
 double rounded_restitution(double e) {
   return std::min(1.0, std::round(e / kRestitutionStep) * kRestitutionStep);
@@ -229,7 +169,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     const scene::Scene& base = t.scene;
     const double mach = base.freestream.mach, theta = base.body->angle_deg;
     const double gas = gas_angle_deg(base, t.origin);
-    std::vector<Point> pts;
+    std::vector<SweepPoint> pts;
     nlohmann::json sweep = nlohmann::json::array();
     for (const double e : o.restitutions) {
       const auto m =
@@ -242,10 +182,10 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       sweep_cpu += m.cpu;
       progress.update(++done, base.name + " e=" + std::to_string(e));
     }
-    const auto by_e = [](const Point& a, const Point& b) { return a.e < b.e; };
+    const auto by_e = [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; };
     std::sort(pts.begin(), pts.end(), by_e);
-    for (int r = 0; r < o.refinements; ++r) {
-      const auto e = refinement(pts, gas);
+    for (int r = 0; r < o.refinements; ++r) {  // sharpen the crossing (see next_restitution)
+      const auto e = next_restitution(pts, gas);
       if (!e) break;
       const auto m =
           measure(base, *e, base.granular.seed, e_dir(o.out_dir, base.name, "e", *e), o.np);
@@ -262,8 +202,8 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     nlohmann::json row = {{"scene", base.name},         {"mach", mach},
                           {"angle_deg", theta},         {"gas_angle_deg", gas},
                           {"seed", base.granular.seed}, {"sweep", sweep}};
-    double e = kNaN, e_ci = kNaN;
-    if (crossing(pts, gas, e, e_ci)) {
+    if (const auto cross = find_crossing(pts, gas)) {
+      const double e = cross->e, e_ci = cross->e_ci;
       row["restitution"] = e;
       row["restitution_ci"] = e_ci;
       point_row.push_back(rows.size());

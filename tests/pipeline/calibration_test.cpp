@@ -1,4 +1,4 @@
-// Calibration table: round trip, interpolation (old tables) and the fitted model; the out-of-sample summary.
+// Calibration table: round trip, old-table interpolation, the fitted model; out-of-sample summary.
 #include "pipeline/calibration.hpp"
 
 #include <gtest/gtest.h>

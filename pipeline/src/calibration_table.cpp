@@ -129,8 +129,9 @@ CalibrationTable read_calibration(const std::string& path) {
 
 void write_calibration(const CalibrationTable& t, const std::string& path) {
   YAML::Emitter e;
-  e.SetDoublePrecision(kCoefficientDigits);
+  e.SetDoublePrecision(kEntryDigits);
   e << YAML::BeginMap << YAML::Key << "gamma" << YAML::Value << t.gamma;
+  e.SetDoublePrecision(kCoefficientDigits);
   if (t.model) {
     e << YAML::Key << "model" << YAML::Value << model_key(*t.model);
     e << YAML::Key << "fits" << YAML::Value << YAML::BeginSeq;

@@ -1,11 +1,20 @@
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "pipeline/calibration.hpp"
+#include "pipeline/calibration_report.hpp"
+#include "pipeline/calibration_training.hpp"
 #include "pipeline/plot.hpp"
+#include "pipeline/restitution_crossing.hpp"
+#include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/cli.hpp"
@@ -21,100 +30,201 @@ namespace fs = std::filesystem;
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The calibration target: the ideal diatomic gas of the CFD.
+constexpr double kTargetGamma = 1.4;
 
-struct Point {
-  double e, angle, ci;
-};
+// Out-of-sample runs use the scene's seed plus these offsets; the fit's
+// sweeps used seed .. seed + replicas - 1, so an offset above the replica
+// count gives replicas no sweep has seen (and the two checks differ too).
+constexpr std::uint64_t kLeaveOneOutSeedOffset = 1000;
+constexpr std::uint64_t kCaseStudySeedOffset = 2000;
+// e is rounded like `pipeline run` rounds the table's value, so a case study
+// here runs at the e the pipeline would use.
+constexpr double kRestitutionStep = 1e-6;
 
-// A sweep point counts only when the fit found a physical attached angle with
-// a usable interval (a failed fit can return any number).
-constexpr double kMaxUsableCiDeg = 5.0;
-bool usable(const Point& p) {
-  return std::isfinite(p.angle) && p.angle > 0.0 && p.angle < 90.0 && std::isfinite(p.ci) && p.ci < kMaxUsableCiDeg;
+double rounded_restitution(double e) {
+  return std::min(1.0, std::round(e / kRestitutionStep) * kRestitutionStep);
 }
 
-// Linear interpolation of e where angle(e) crosses `target`, scanning from
-// e = 1 downwards (the physically relevant, least dissipative crossing).
-// The 95% half-width on e propagates the angle intervals through the local slope.
-bool crossing(const std::vector<Point>& pts, double target, double& e, double& e_ci) {
-  if (pts.size() < 2) return false;
-  for (std::size_t k = pts.size() - 1; k >= 1; --k) {
-    const Point a = pts[k - 1], b = pts[k];
-    if (!usable(a) || !usable(b)) continue;
-    if ((a.angle - target) * (b.angle - target) <= 0 && a.angle != b.angle) {
-      const double slope = (b.angle - a.angle) / (b.e - a.e);
-      e = a.e + (target - a.angle) / slope;
-      e_ci = std::abs(0.5 * (a.ci + b.ci) / slope);
-      return true;
+double number_or_nan(const nlohmann::json& r, const char* key) {
+  return r.contains(key) && r[key].is_number() ? r[key].get<double>() : kNaN;
+}
+
+double gas_angle_deg(const scene::Scene& s, const std::string& origin) {
+  const auto beta =
+      scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, kTargetGamma);
+  if (!beta)
+    throw scene::InputError(
+        origin +
+        ": key 'body.angle_deg': detached at gamma 1.4; no shock angle to calibrate against");
+  return *beta / kDeg;
+}
+
+double cpu_seconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+// One granular + shockfit run at e and seed; the granular angle, its 95%
+// interval and the CPU seconds it took (about 0 when cached).
+struct Measured {
+  double angle = kNaN, ci = kNaN, cpu = 0;
+};
+Measured measure(const scene::Scene& base, double e, std::uint64_t seed, const std::string& dir,
+                 int np) {
+  scene::Scene s = base;
+  s.granular.restitution = e;
+  s.granular.restitution_given = true;
+  s.granular.seed = seed;
+  const double c0 = cpu_seconds();
+  const auto r = run_prediction(s, dir, np);
+  if (scene::interrupted())
+    throw scene::RunError("calibrate interrupted; finished runs are cached, rerun to resume");
+  return {number_or_nan(r, "shock_angle_deg"), number_or_nan(r, "shock_angle_ci_deg"),
+          cpu_seconds() - c0};
+}
+
+std::string e_dir(const std::string& root, const std::string& name, const char* what, double e) {
+  std::ostringstream d;
+  d << root << "/" << name << "/" << what << e;
+  return d.str();
+}
+
+void check_seed_room(const scene::Scene& s, const std::string& origin) {
+  if (static_cast<std::uint64_t>(s.granular.replicas) >= kLeaveOneOutSeedOffset)
+    throw scene::InputError(
+        origin + ": key 'granular.replicas': calibrate needs fewer than " +
+        std::to_string(kLeaveOneOutSeedOffset) +
+        " replicas (the out-of-sample seeds start that far above granular.seed)");
+}
+
+struct Training {
+  scene::Scene scene;
+  std::string origin;
+};
+
+std::vector<Training> training_set(const CalibrateOptions& o,
+                                   const std::vector<WedgePoint>& cases) {
+  std::vector<Training> out;
+  if (o.scenes.empty()) {
+    for (const auto& p : training_wedges(o.machs, o.angles_deg, kTargetGamma, cases))
+      out.push_back({training_scene(p), "calibrate training wedge"});
+    if (out.empty())
+      throw scene::InputError(
+          "calibrate: --mach x --angle gives no attached wedge outside the case studies");
+  } else {
+    for (const auto& path : o.scenes) {
+      scene::Scene s = scene::load_scene(path);
+      if (!s.body || s.body->kind != scene::BodyKind::wedge)
+        throw scene::InputError(path + ": key 'body.kind': calibrate needs wedge scenes");
+      out.push_back({s, path});
     }
   }
-  return false;
+  for (const auto& t : out) {
+    gas_angle_deg(t.scene, t.origin);  // a detached wedge fails before any run
+    check_seed_room(t.scene, t.origin);
+  }
+  return out;
 }
 }  // namespace
 
 nlohmann::json run_calibration(const CalibrateOptions& o) {
-  std::vector<std::string> scenes = o.scenes;
-  if (scenes.empty())
-    for (const auto& p : case_study_scenes())
-      if (fs::path(p).filename().string().rfind("wedge", 0) == 0) scenes.push_back(p);
-  if (scenes.empty()) throw scene::InputError("calibrate: no wedge scenes given");
+  const auto t_wall = std::chrono::steady_clock::now();
+  const double cpu0 = cpu_seconds();
+  if (o.restitutions.size() < 2)
+    throw scene::InputError("calibrate: --e needs at least two values");
+  if (o.refinements < 0) throw scene::InputError("calibrate: --refine must be 0 or more");
+  for (const double e : o.restitutions)
+    if (!(e > 0 && e <= 1)) throw scene::InputError("calibrate: --e values must lie in (0, 1]");
+  std::vector<std::string> case_paths;
+  for (const auto& p : case_study_scenes())
+    if (fs::path(p).filename().string().rfind("wedge", 0) == 0) case_paths.push_back(p);
+  std::vector<scene::Scene> cases;
+  for (const auto& p : case_paths) cases.push_back(scene::load_scene(p));
+  const auto case_points = wedge_points(case_paths);
+  const auto training = training_set(o, case_points);
+
   const std::string table_path = o.table_path.empty() ? builtin_calibration_path() : o.table_path;
   scene::make_dirs(o.out_dir);
-  CalibrationTable table;
-  nlohmann::json out = nlohmann::json::array();
-  PlotSpec plot{"Granular shock angle against restitution (dashed: ideal-gas angle)", "restitution e",
-                "shock angle (deg)", false, false, {}, {}};
-  scene::Progress progress("calibrate", static_cast<double>(scenes.size() * o.restitutions.size()), "runs");
+  const std::size_t n_runs =
+      training.size() *
+          (o.restitutions.size() + static_cast<std::size_t>(o.refinements) + (o.verify ? 1 : 0)) +
+      (o.verify ? cases.size() : 0);  // refinements may stop early: an upper bound
+  scene::Progress progress("calibrate", static_cast<double>(n_runs), "runs");
   int done = 0;
-  for (const auto& path : scenes) {
-    const scene::Scene base = scene::load_scene(path);
-    if (!base.body || base.body->kind != scene::BodyKind::wedge)
-      throw scene::InputError(path + ": calibrate needs wedge scenes");
+
+  // 1. Sweep e on every training wedge and find the crossing.
+  PlotSpec plot{"Granular shock angle against restitution (dashed: ideal-gas angle)",
+                "restitution e",
+                "shock angle (deg)",
+                false,
+                false,
+                {},
+                {}};
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<RestitutionPoint> points;
+  std::vector<std::size_t> point_row;  // rows index of each point
+  CalibrationTable table;
+  table.gamma = kTargetGamma;
+  double sweep_cpu = 0;
+  for (const auto& t : training) {
+    const scene::Scene& base = t.scene;
     const double mach = base.freestream.mach, theta = base.body->angle_deg;
-    const auto beta = scene::oblique_shock_beta(mach, theta * kDeg, 1.4);
-    if (!beta) throw scene::InputError(path + ": detached at gamma 1.4; no shock angle to calibrate against");
-    const double gas = *beta / kDeg;
-    std::vector<Point> pts;
-    Series ser;
-    ser.title = base.name;
-    for (const double e : o.restitutions) {
-      scene::Scene s = base;
-      s.granular.restitution = e;
-      s.granular.restitution_given = true;
-      std::ostringstream dir;
-      dir << o.out_dir << "/" << base.name << "/e" << e;
-      const auto r = run_prediction(s, dir.str(), o.np);
-      const double a = r.contains("shock_angle_deg") && r["shock_angle_deg"].is_number() ? r["shock_angle_deg"].get<double>() : kNaN;
-      const double ci = r.contains("shock_angle_ci_deg") && r["shock_angle_ci_deg"].is_number() ? r["shock_angle_ci_deg"].get<double>() : kNaN;
-      pts.push_back({e, a, ci});
-      progress.update(++done, base.name + " e=" + std::to_string(e));
-      if (scene::interrupted()) throw scene::RunError("calibrate interrupted; finished runs are cached, rerun to resume");
-    }
-    std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.e < b.e; });
-    nlohmann::json row = {{"scene", base.name}, {"mach", mach}, {"angle_deg", theta}, {"gas_angle_deg", gas}};
+    const double gas = gas_angle_deg(base, t.origin);
+    std::vector<SweepPoint> pts;
     nlohmann::json sweep = nlohmann::json::array();
-    for (const auto& p : pts) sweep.push_back({{"restitution", p.e}, {"shock_angle_deg", p.angle}, {"ci_deg", p.ci}});
-    row["sweep"] = sweep;
-    double e = kNaN, e_ci = kNaN;
-    if (crossing(pts, gas, e, e_ci)) {
-      CalibrationEntry c{mach, theta, e, e_ci, gas, kNaN, kNaN};
-      if (o.verify) {
-        scene::Scene s = base;
-        s.granular.restitution = e;
-        s.granular.restitution_given = true;
-        const auto r = run_prediction(s, o.out_dir + "/" + base.name + "/verify", o.np);
-        c.granular_angle_deg = r.value("shock_angle_deg", kNaN);
-        c.granular_angle_ci_deg = r.value("shock_angle_ci_deg", kNaN);
-      }
-      table.entries.push_back(c);
+    for (const double e : o.restitutions) {
+      const auto m =
+          measure(base, e, base.granular.seed, e_dir(o.out_dir, base.name, "e", e), o.np);
+      pts.push_back({e, m.angle, m.ci});
+      sweep.push_back({{"restitution", e},
+                       {"shock_angle_deg", m.angle},
+                       {"ci_deg", m.ci},
+                       {"cpu_seconds", m.cpu}});
+      sweep_cpu += m.cpu;
+      progress.update(++done, base.name + " e=" + std::to_string(e));
+    }
+    const auto by_e = [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; };
+    std::sort(pts.begin(), pts.end(), by_e);
+    for (int r = 0; r < o.refinements; ++r) {  // sharpen the crossing (see next_restitution)
+      const auto e = next_restitution(pts, gas);
+      if (!e) break;
+      const auto m =
+          measure(base, *e, base.granular.seed, e_dir(o.out_dir, base.name, "e", *e), o.np);
+      pts.push_back({*e, m.angle, m.ci});
+      std::sort(pts.begin(), pts.end(), by_e);
+      sweep.push_back({{"restitution", *e},
+                       {"shock_angle_deg", m.angle},
+                       {"ci_deg", m.ci},
+                       {"cpu_seconds", m.cpu},
+                       {"refinement", r + 1}});
+      sweep_cpu += m.cpu;
+      progress.update(++done, base.name + " refined e=" + std::to_string(*e));
+    }
+    nlohmann::json row = {{"scene", base.name},         {"mach", mach},
+                          {"angle_deg", theta},         {"gas_angle_deg", gas},
+                          {"seed", base.granular.seed}, {"sweep", sweep}};
+    if (const auto cross = find_crossing(pts, gas)) {
+      const double e = cross->e, e_ci = cross->e_ci;
       row["restitution"] = e;
       row["restitution_ci"] = e_ci;
-      row["verified_angle_deg"] = c.granular_angle_deg;
+      point_row.push_back(rows.size());
+      points.push_back({mach, theta, e, e_ci});
+      CalibrationEntry c;
+      c.mach = mach;
+      c.angle_deg = theta;
+      c.restitution = e;
+      c.restitution_ci = e_ci;
+      c.gas_angle_deg = gas;
+      c.granular_angle_deg = kNaN;
+      c.granular_angle_ci_deg = kNaN;
+      table.entries.push_back(c);
     } else {
       row["restitution"] = nullptr;
       row["note"] = "the granular angle does not cross the gas angle over the swept e";
     }
-    out.push_back(row);
+    rows.push_back(row);
+    Series ser;
+    ser.title = base.name;
     for (const auto& p : pts) {
       if (!usable(p)) continue;  // failed fits stay in calibration.json, not on the plot
       ser.x.push_back(p.e);
@@ -123,14 +233,112 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     }
     plot.series.push_back(ser);
     std::ostringstream hl;
-    hl << "set arrow from " << o.restitutions.front() << "," << gas << " to " << o.restitutions.back() << "," << gas
+    hl << "set arrow from " << pts.front().e << "," << gas << " to " << pts.back().e << "," << gas
        << " nohead dt 2 lw 1.5";
     plot.extra.push_back(hl.str());
   }
+
+  // 2. Fit the smooth models and choose one by its leave-one-out error.
+  const auto choice = choose_restitution_model(points);
+  if (!choice)
+    throw scene::RunError("calibrate: " + std::to_string(points.size()) +
+                          " crossing(s) found; too few (or all at one Mach number) to fit e(M)");
+  const RestitutionFit& fit = choice->fit();
+  table.model = fit.model;
+  table.fits = choice->candidates;
+  if (uses_angle(fit.model) && !table.fit(RestitutionModel::inverse_mach2))
+    throw scene::RunError(
+        "calibrate: the Mach-only model could not be fitted; blunt bodies would have no e");
+
+  // 3. Out of sample: every training wedge at its leave-one-out e, then the
+  // wedge case studies at the fitted e, each with a seed the fit never used.
+  nlohmann::json case_rows = nlohmann::json::array();
+  double check_cpu = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto e_loo = leave_one_out_restitution(points, fit.model, i);
+    auto& row = rows[point_row[i]];
+    CalibrationEntry& c = table.entries[i];
+    if (!e_loo) {
+      row["note"] = "the model cannot be refitted without this point";
+      continue;
+    }
+    c.loo_restitution = rounded_restitution(*e_loo);
+    row["loo_restitution"] = c.loo_restitution;
+    if (!o.verify) continue;
+    const scene::Scene& base = training[point_row[i]].scene;
+    const std::uint64_t seed = base.granular.seed + kLeaveOneOutSeedOffset;
+    const auto m = measure(base, c.loo_restitution, seed,
+                           e_dir(o.out_dir, base.name, "loo_e", c.loo_restitution), o.np);
+    c.granular_angle_deg = m.angle;
+    c.granular_angle_ci_deg = m.ci;
+    check_cpu += m.cpu;
+    row["loo_seed"] = seed;
+    row["loo_granular_angle_deg"] = m.angle;
+    row["loo_granular_angle_ci_deg"] = m.ci;
+    row["loo_angle_error_deg"] = m.angle - c.gas_angle_deg;
+    row["loo_cpu_seconds"] = m.cpu;
+    progress.update(++done, base.name + " leave-one-out");
+  }
+  if (o.verify) {
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const scene::Scene& base = cases[k];
+      const WedgePoint p = case_points[k];
+      const double e = rounded_restitution(*interpolate_restitution(table, p.mach, p.angle_deg));
+      const std::uint64_t seed = base.granular.seed + kCaseStudySeedOffset;
+      const double gas = gas_angle_deg(base, case_paths[k]);
+      const auto m =
+          measure(base, e, seed, e_dir(o.out_dir, "case_studies/" + base.name, "e", e), o.np);
+      check_cpu += m.cpu;
+      bool in_sample = false;
+      for (const auto& q : points) in_sample = in_sample || same_wedge(p, {q.mach, q.angle_deg});
+      case_rows.push_back({{"scene", base.name},
+                           {"mach", p.mach},
+                           {"angle_deg", p.angle_deg},
+                           {"restitution", e},
+                           {"seed", seed},
+                           {"gas_angle_deg", gas},
+                           {"granular_angle_deg", m.angle},
+                           {"granular_angle_ci_deg", m.ci},
+                           {"angle_error_deg", m.angle - gas},
+                           {"in_sample", in_sample},
+                           {"cpu_seconds", m.cpu}});
+      progress.update(++done, base.name + " at the fitted e");
+    }
+  }
   progress.finish();
+
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& f : choice->candidates)
+    candidates.push_back({{"model", model_key(f.model)},
+                          {"formula", model_formula(f.model)},
+                          {"coefficients", f.coefficients},
+                          {"residual_sd", f.residual_sd},
+                          {"loo_rms", f.loo_rms}});
+  nlohmann::json out = {
+      {"target_gamma", kTargetGamma},
+      {"restitutions", o.restitutions},
+      {"refinements", o.refinements},
+      {"training", o.scenes.empty()
+                       ? nlohmann::json{{"machs", o.machs}, {"angles_deg", o.angles_deg}}
+                       : nlohmann::json{{"scenes", o.scenes}}},
+      {"points", rows},
+      {"model", model_key(fit.model)},
+      {"candidates", candidates},
+      {"case_studies", case_rows},
+      {"seed_offsets",
+       {{"leave_one_out", kLeaveOneOutSeedOffset}, {"case_studies", kCaseStudySeedOffset}}},
+      {"cpu_seconds",
+       {{"sweeps", sweep_cpu}, {"out_of_sample", check_cpu}, {"total", cpu_seconds() - cpu0}}},
+      {"wall_seconds",
+       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_wall).count()}};
+  out["summary"] = out_of_sample_summary(out);
+
   plot_png(plot, o.out_dir + "/calibration.png");
   write_calibration(table, table_path);
   scene::write_json_atomic(o.out_dir + "/calibration.json", out);
+  scene::write_file_atomic(
+      o.markdown_path.empty() ? o.out_dir + "/calibration.md" : o.markdown_path,
+      calibration_markdown(out));
   return out;
 }
 

@@ -1,7 +1,9 @@
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "pipeline/calibration.hpp"
@@ -12,10 +14,60 @@
 namespace pipeline {
 
 namespace {
-// Distances in the table: one Mach number counts as much as 5 deg of wedge angle.
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Distances in an old table: one Mach number counts as much as 5 deg of wedge angle.
 constexpr double kAngleScaleDeg = 5.0;
 constexpr double kExactMatch = 1e-9;
+// e = 1 is the elastic limit: a fit extrapolated below the training Mach
+// numbers (c1 > 0) can exceed it, which no disk collision can.
+constexpr double kMaxRestitution = 1.0;
+// Per-point values are measured to far less than this many digits; the
+// coefficients carry all 17 so that a reread table evaluates identically.
+constexpr int kEntryDigits = 6;
+constexpr int kCoefficientDigits = 17;
+// training_points must repeat the entries' (Mach, angle) to this tolerance.
+constexpr double kTrainingPointMatch = 1e-9;
+
+[[noreturn]] void bad(const std::string& path, const YAML::Node& n, const std::string& key,
+                      const std::string& what) {
+  const std::string line =
+      n.IsDefined() && n.Mark().line >= 0 ? ":" + std::to_string(n.Mark().line + 1) : "";
+  throw scene::InputError(path + line + ": key '" + key + "': " + what);
+}
+
+RestitutionFit read_fit(const std::string& path, const YAML::Node& n, const std::string& key) {
+  if (!n.IsMap()) bad(path, n, key, "expected a map {model, coefficients, residual_sd, loo_rms}");
+  RestitutionFit f;
+  const auto m = model_from_key(n["model"] ? n["model"].as<std::string>() : "");
+  if (!m)
+    bad(path, n, key + ".model",
+        "unknown model (one of constant, inverse_mach2, inverse_mach2_angle)");
+  f.model = *m;
+  const auto c = n["coefficients"];
+  if (!c || !c.IsSequence() || c.size() != parameter_count(f.model))
+    bad(path, n, key + ".coefficients",
+        "expected " + std::to_string(parameter_count(f.model)) + " numbers for " +
+            model_key(f.model));
+  for (const auto& x : c) {
+    const double v = x.as<double>();
+    if (!std::isfinite(v)) bad(path, x, key + ".coefficients", "not a finite number");
+    f.coefficients.push_back(v);
+  }
+  f.residual_sd = n["residual_sd"] ? n["residual_sd"].as<double>() : kNaN;
+  f.loo_rms = n["loo_rms"] ? n["loo_rms"].as<double>() : kNaN;
+  return f;
+}
+
+double optional_number(const YAML::Node& n, const char* key, double fallback) {
+  return n[key] ? n[key].as<double>() : fallback;
+}
 }  // namespace
+
+const RestitutionFit* CalibrationTable::fit(RestitutionModel m) const {
+  const auto it =
+      std::find_if(fits.begin(), fits.end(), [m](const RestitutionFit& f) { return f.model == m; });
+  return it == fits.end() ? nullptr : &*it;
+}
 
 CalibrationTable read_calibration(const std::string& path) {
   CalibrationTable t;
@@ -27,7 +79,8 @@ CalibrationTable read_calibration(const std::string& path) {
   } catch (const YAML::BadFile&) {
     throw scene::InputError(path + ": calibration table not found");
   } catch (const YAML::Exception& e) {
-    throw scene::InputError(path + ":" + std::to_string(e.mark.line + 1) + ": malformed calibration table: " + e.msg);
+    throw scene::InputError(path + ":" + std::to_string(e.mark.line + 1) +
+                            ": malformed calibration table: " + e.msg);
   }
   try {
     if (root["gamma"]) t.gamma = root["gamma"].as<double>();
@@ -36,24 +89,72 @@ CalibrationTable read_calibration(const std::string& path) {
       e.mach = n["mach"].as<double>();
       e.angle_deg = n["angle_deg"].as<double>();
       e.restitution = n["restitution"].as<double>();
-      e.restitution_ci = n["restitution_ci"] ? n["restitution_ci"].as<double>() : 0.0;
-      e.gas_angle_deg = n["gas_angle_deg"] ? n["gas_angle_deg"].as<double>() : NAN;
-      e.granular_angle_deg = n["granular_angle_deg"] ? n["granular_angle_deg"].as<double>() : NAN;
-      e.granular_angle_ci_deg = n["granular_angle_ci_deg"] ? n["granular_angle_ci_deg"].as<double>() : NAN;
+      e.restitution_ci = optional_number(n, "restitution_ci", 0.0);
+      e.gas_angle_deg = optional_number(n, "gas_angle_deg", kNaN);
+      e.granular_angle_deg = optional_number(n, "granular_angle_deg", kNaN);
+      e.granular_angle_ci_deg = optional_number(n, "granular_angle_ci_deg", kNaN);
+      e.loo_restitution = optional_number(n, "loo_restitution", kNaN);
       if (!(e.restitution > 0 && e.restitution <= 1))
-        throw scene::InputError(path + ": restitution outside (0, 1] in an entry");
+        bad(path, n, "entries.restitution", "outside (0, 1]");
       t.entries.push_back(e);
     }
+    if (const auto fits = root["fits"]) {
+      if (!fits.IsSequence()) bad(path, fits, "fits", "expected a list of fits");
+      for (std::size_t i = 0; i < fits.size(); ++i)
+        t.fits.push_back(read_fit(path, fits[i], "fits[" + std::to_string(i) + "]"));
+    }
+    if (const auto model = root["model"]) {
+      t.model = model_from_key(model.as<std::string>());
+      if (!t.model) bad(path, model, "model", "unknown model '" + model.as<std::string>() + "'");
+      if (!t.fit(*t.model))
+        bad(path, model, "fits", "no fit for the chosen model " + model_key(*t.model));
+      // Blunt bodies have no wedge angle: they need the Mach-only model.
+      if (uses_angle(*t.model) && !t.fit(RestitutionModel::inverse_mach2))
+        bad(path, model, "fits", "no inverse_mach2 fit for bodies without a wedge angle");
+    } else if (!t.fits.empty()) {
+      bad(path, root["fits"], "model", "fits given but no chosen model");
+    }
+    if (const auto tp = root["training_points"]) {
+      if (!tp.IsSequence() || tp.size() != t.entries.size())
+        bad(path, tp, "training_points", "expected one [mach, angle_deg] per entry");
+      for (std::size_t i = 0; i < tp.size(); ++i) {
+        if (!tp[i].IsSequence() || tp[i].size() != 2 ||
+            std::abs(tp[i][0].as<double>() - t.entries[i].mach) > kTrainingPointMatch ||
+            std::abs(tp[i][1].as<double>() - t.entries[i].angle_deg) > kTrainingPointMatch)
+          bad(path, tp[i], "training_points", "does not match entry " + std::to_string(i));
+      }
+    }
   } catch (const YAML::Exception& e) {
-    throw scene::InputError(path + ":" + std::to_string(e.mark.line + 1) + ": calibration table: " + e.msg);
+    throw scene::InputError(path + ":" + std::to_string(e.mark.line + 1) +
+                            ": calibration table: " + e.msg);
   }
   return t;
 }
 
 void write_calibration(const CalibrationTable& t, const std::string& path) {
   YAML::Emitter e;
-  e.SetDoublePrecision(6);  // e to 1e-6 is far below its uncertainty
+  e.SetDoublePrecision(kEntryDigits);
   e << YAML::BeginMap << YAML::Key << "gamma" << YAML::Value << t.gamma;
+  e.SetDoublePrecision(kCoefficientDigits);
+  if (t.model) {
+    e << YAML::Key << "model" << YAML::Value << model_key(*t.model);
+    e << YAML::Key << "fits" << YAML::Value << YAML::BeginSeq;
+    for (const auto& f : t.fits) {
+      e << YAML::Flow << YAML::BeginMap << YAML::Key << "model" << YAML::Value << model_key(f.model)
+        << YAML::Key << "formula" << YAML::Value << YAML::DoubleQuoted << model_formula(f.model)
+        << YAML::Key << "coefficients" << YAML::Value << YAML::Flow << f.coefficients << YAML::Key
+        << "residual_sd" << YAML::Value << f.residual_sd << YAML::Key << "loo_rms" << YAML::Value
+        << f.loo_rms << YAML::EndMap;
+    }
+    e << YAML::EndSeq;
+  }
+  e.SetDoublePrecision(kEntryDigits);
+  if (t.model) {
+    e << YAML::Key << "training_points" << YAML::Value << YAML::BeginSeq;
+    for (const auto& c : t.entries)
+      e << YAML::Flow << YAML::BeginSeq << c.mach << c.angle_deg << YAML::EndSeq;
+    e << YAML::EndSeq;
+  }
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;
   for (const auto& c : t.entries) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "mach" << YAML::Value << c.mach << YAML::Key
@@ -61,20 +162,39 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
       << c.restitution << YAML::Key << "restitution_ci" << YAML::Value << c.restitution_ci
       << YAML::Key << "gas_angle_deg" << YAML::Value << c.gas_angle_deg << YAML::Key
       << "granular_angle_deg" << YAML::Value << c.granular_angle_deg << YAML::Key
-      << "granular_angle_ci_deg" << YAML::Value << c.granular_angle_ci_deg << YAML::EndMap;
+      << "granular_angle_ci_deg" << YAML::Value << c.granular_angle_ci_deg;
+    if (t.model) e << YAML::Key << "loo_restitution" << YAML::Value << c.loo_restitution;
+    e << YAML::EndMap;
   }
   e << YAML::EndSeq << YAML::EndMap;
-  scene::write_file_atomic(path, std::string("# Written by `pipeline calibrate`: restitution e at which the granular\n"
-                                             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n") +
-                                     e.c_str() + "\n");
+  const std::string header =
+      t.model
+          ? "# Written by `pipeline calibrate` (docs/calibration.md): restitution e(M[, theta])\n"
+            "# fitted to training wedges at which the granular shock angle equals the ideal-gas\n"
+            "# theta-beta-Mach angle. `pipeline run` evaluates `model` (blunt bodies: the\n"
+            "# inverse_mach2 fit); entries are the training points (crossing e, 95% half-width),\n"
+            "# granular_angle_deg measured at loo_restitution, the leave-one-out prediction.\n"
+          : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
+            "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
+  scene::write_file_atomic(path, header + e.c_str() + "\n");
 }
 
-std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach, double angle_deg) {
+std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
+                                              double angle_deg) {
+  if (t.model) {
+    const bool blunt = std::isnan(angle_deg);
+    const RestitutionModel m =
+        blunt && uses_angle(*t.model) ? RestitutionModel::inverse_mach2 : *t.model;
+    const RestitutionFit* f = t.fit(m);
+    if (!f) return std::nullopt;  // read_calibration refuses such a table
+    return std::min(f->evaluate(mach, angle_deg), kMaxRestitution);
+  }
   if (t.entries.empty()) return std::nullopt;
   double wsum = 0, esum = 0;
   for (const auto& c : t.entries) {
-    const double d = std::isnan(angle_deg) ? std::abs(c.mach - mach)
-                                           : std::hypot(c.mach - mach, (c.angle_deg - angle_deg) / kAngleScaleDeg);
+    const double d = std::isnan(angle_deg)
+                         ? std::abs(c.mach - mach)
+                         : std::hypot(c.mach - mach, (c.angle_deg - angle_deg) / kAngleScaleDeg);
     if (d < kExactMatch) return c.restitution;
     const double w = 1.0 / (d * d);
     wsum += w;

@@ -67,15 +67,30 @@ int main(int argc, char** argv) {
     sweep->add_option("--jobs", jobs, "cases at once (processes)")->check(CLI::Range(1, 256));
     sweep->add_option("--np", np, "threads per case")->check(CLI::Range(1, 1024));
 
-    auto* calib = app.add_subcommand("calibrate", "find e so that granular shock angles match ideal-gas angles");
+    auto* calib = app.add_subcommand(
+        "calibrate", "fit e(M[, theta]) so that granular shock angles match ideal-gas angles");
     pipeline::CalibrateOptions co;
     bool no_verify = false;
-    calib->add_option("--scene", co.scenes, "wedge scenes (default: the wedge case studies)");
+    calib->add_option(
+        "--scene", co.scenes,
+        "training wedge scenes (default: generated on --mach x --angle, case studies left out)");
+    calib->add_option("--mach", co.machs, "Mach numbers of the generated training wedges")
+        ->delimiter(',');
+    calib
+        ->add_option("--angle", co.angles_deg, "deflections (deg) of the generated training wedges")
+        ->delimiter(',');
     calib->add_option("--e", co.restitutions, "restitution values to sweep")->delimiter(',');
+    calib
+        ->add_option("--refine", co.refinements,
+                     "runs that bisect the bracketing e interval after the sweep")
+        ->check(CLI::NonNegativeNumber);
     calib->add_option("--out", co.out_dir, "output directory")->required();
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
+    calib->add_option("--markdown", co.markdown_path,
+                      "markdown tables to write (default: OUT/calibration.md)");
     calib->add_option("--np", co.np, "threads per run")->check(CLI::PositiveNumber);
-    calib->add_flag("--no-verify", no_verify, "skip the verification run at the calibrated e");
+    calib->add_flag("--no-verify", no_verify,
+                    "skip the out-of-sample runs (leave-one-out and case studies at fresh seeds)");
 
     auto* studies = app.add_subcommand("studies", "regenerate the case studies and docs/case_studies.md");
     pipeline::StudiesOptions so;

@@ -1,10 +1,12 @@
-// Calibration table: round trip and interpolation.
+// Calibration table: round trip, old-table interpolation, the fitted model; out-of-sample summary.
+#include "pipeline/calibration.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "pipeline/calibration.hpp"
+#include "pipeline/calibration_report.hpp"
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -44,4 +46,138 @@ TEST(Calibration, MalformedTableIsInputError) {
   scene::write_file_atomic(path, "entries: [{mach: 3, angle_deg: 10, restitution: 1.7}]\n");
   EXPECT_THROW(pipeline::read_calibration(path), scene::InputError);
   EXPECT_THROW(pipeline::read_calibration("/nonexistent/calib.yaml"), scene::InputError);
+}
+
+namespace {
+// A fitted table: the Mach-and-angle model chosen, the Mach-only one beside it.
+pipeline::CalibrationTable fitted_table() {
+  pipeline::CalibrationTable t;
+  pipeline::CalibrationEntry a;
+  a.mach = 2.5;
+  a.angle_deg = 8;
+  a.restitution = 0.99;
+  a.restitution_ci = 0.002;
+  a.gas_angle_deg = 29.8;
+  a.granular_angle_deg = 30.1;
+  a.granular_angle_ci_deg = 0.6;
+  a.loo_restitution = 0.9912345678;
+  pipeline::CalibrationEntry b = a;
+  b.mach = 6;
+  b.angle_deg = 20;
+  b.restitution = 0.96;
+  t.entries = {a, b};
+  // Coefficients with all 17 digits significant (1/3 and friends).
+  t.fits = {{pipeline::RestitutionModel::inverse_mach2,
+             {0.95612345678901234, 1.0 / 3.0},
+             0.0012345,
+             0.0023456},
+            {pipeline::RestitutionModel::inverse_mach2_angle,
+             {0.9491, 2.0 / 7.0, 1.0 / 1300.0},
+             0.001,
+             0.002}};
+  t.model = pipeline::RestitutionModel::inverse_mach2_angle;
+  return t;
+}
+}  // namespace
+
+TEST(Calibration, FittedTableRoundTripsAtFullPrecision) {
+  const auto t = fitted_table();
+  const auto path = (std::filesystem::temp_directory_path() / "calib_fit.yaml").string();
+  pipeline::write_calibration(t, path);
+  const auto back = pipeline::read_calibration(path);
+  ASSERT_TRUE(back.model.has_value());
+  EXPECT_EQ(*back.model, pipeline::RestitutionModel::inverse_mach2_angle);
+  ASSERT_EQ(back.fits.size(), 2u);
+  for (std::size_t i = 0; i < t.fits.size(); ++i) {
+    EXPECT_EQ(back.fits[i].model, t.fits[i].model);
+    ASSERT_EQ(back.fits[i].coefficients.size(), t.fits[i].coefficients.size());
+    for (std::size_t j = 0; j < t.fits[i].coefficients.size(); ++j)
+      EXPECT_EQ(back.fits[i].coefficients[j], t.fits[i].coefficients[j]);  // bit for bit
+    EXPECT_DOUBLE_EQ(back.fits[i].residual_sd, t.fits[i].residual_sd);
+    EXPECT_DOUBLE_EQ(back.fits[i].loo_rms, t.fits[i].loo_rms);
+  }
+  ASSERT_EQ(back.entries.size(), 2u);  // the per-point entries are kept
+  EXPECT_DOUBLE_EQ(back.entries[1].restitution, 0.96);
+  EXPECT_NEAR(back.entries[0].loo_restitution, 0.991235, 1e-12);  // entries at 6 digits
+  // The reread table evaluates exactly as the one written.
+  EXPECT_EQ(*pipeline::interpolate_restitution(back, 4.0, 15.0),
+            *pipeline::interpolate_restitution(t, 4.0, 15.0));
+}
+
+TEST(Calibration, FittedTableEvaluatesTheModel) {
+  const auto t = fitted_table();
+  // The chosen model, not the nearest entry: an entry's own point gives the fit's e.
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 6, 20),
+              0.9491 + (2.0 / 7.0) / 36.0 + 20.0 / 1300.0, 1e-15);
+  // Blunt bodies (NaN angle): the Mach-only model.
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4, NAN), 0.95612345678901234 + 1.0 / 48.0,
+              1e-15);
+  // Below the training Mach numbers the fit would exceed the elastic limit.
+  EXPECT_EQ(*pipeline::interpolate_restitution(t, 1.2, 8), 1.0);
+}
+
+TEST(Calibration, FittedTableAppliedToAScene) {
+  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_apply.yaml").string();
+  pipeline::write_calibration(fitted_table(), path);
+  auto s = scene::parse_scene("body: {kind: wedge, angle_deg: 15}\nfreestream: {mach: 4}\n");
+  EXPECT_NE(pipeline::apply_calibration(s, path).find("from the calibration table"),
+            std::string::npos);
+  EXPECT_NEAR(s.granular.restitution, 0.9491 + (2.0 / 7.0) / 16.0 + 15.0 / 1300.0, 1e-6);
+}
+
+TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
+  const auto path = (std::filesystem::temp_directory_path() / "calib_bad_fit.yaml").string();
+  const std::string entries = "entries: [{mach: 3, angle_deg: 10, restitution: 0.98}]\n";
+  const auto message = [&](const std::string& text) -> std::string {
+    scene::write_file_atomic(path, text);
+    try {
+      pipeline::read_calibration(path);
+    } catch (const scene::InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(message(entries + "model: quadratic\nfits: []\n").find("'model'"), std::string::npos);
+  EXPECT_NE(message(entries +
+                    "model: inverse_mach2\nfits: [{model: inverse_mach2, coefficients: [0.9]}]\n")
+                .find("'fits[0].coefficients'"),
+            std::string::npos);
+  EXPECT_NE(
+      message(entries + "model: inverse_mach2_angle\n"
+                        "fits: [{model: inverse_mach2_angle, coefficients: [0.9, 0.2, 0.001]}]\n")
+          .find("inverse_mach2 fit"),
+      std::string::npos);
+  EXPECT_NE(message(entries + "fits: [{model: constant, coefficients: [0.9]}]\n").find("'model'"),
+            std::string::npos);
+  EXPECT_NE(message(entries + "model: constant\nfits: [{model: constant, coefficients: [0.9]}]\n"
+                              "training_points: [[4, 10]]\n")
+                .find("'training_points'"),
+            std::string::npos);
+  EXPECT_NE(message(entries + "model: quadratic\nfits: []\n").find(path),
+            std::string::npos);     // names the file
+  EXPECT_EQ(message(entries), "");  // an old table (entries only) is fine
+}
+
+TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
+  nlohmann::json c = {
+      {"model", "inverse_mach2"},
+      {"candidates",
+       {{{"model", "inverse_mach2"},
+         {"formula", "e = c0 + c1/M^2"},
+         {"coefficients", {0.95, 0.3}},
+         {"residual_sd", 0.002},
+         {"loo_rms", 0.003}}}},
+      {"points",
+       {{{"loo_angle_error_deg", 0.3}},
+        {{"loo_angle_error_deg", -0.4}},
+        {{"restitution", nullptr}}}},
+      {"case_studies",
+       {{{"angle_error_deg", 1.0}}, {{"angle_error_deg", 9.0}, {"in_sample", true}}}}};
+  const auto s = pipeline::out_of_sample_summary(c);
+  EXPECT_EQ(s["leave_one_out"]["n"], 2);
+  EXPECT_NEAR(s["leave_one_out"]["rms_deg"].get<double>(), std::sqrt((0.09 + 0.16) / 2), 1e-12);
+  EXPECT_NEAR(s["leave_one_out"]["max_abs_deg"].get<double>(), 0.4, 1e-12);
+  EXPECT_EQ(s["case_studies"]["n"], 1);  // the in-sample case study does not count
+  EXPECT_NEAR(s["case_studies"]["max_abs_deg"].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(s["residual_sd_restitution"].get<double>(), 0.002, 1e-15);
 }

@@ -1,31 +1,51 @@
 #pragma once
-// The restitution table of `pipeline calibrate`: for each (Mach, wedge angle)
-// the coefficient of restitution at which the granular shock angle equals
-// the ideal-gas (gamma 1.4) theta-beta-Mach angle.
+// The restitution table of `pipeline calibrate`: for each training wedge
+// (Mach, angle) the coefficient of restitution at which the granular shock
+// angle equals the ideal-gas (gamma 1.4) theta-beta-Mach angle, and the
+// smooth model e(M[, theta]) fitted to them (docs/calibration.md).
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "pipeline/restitution_fit.hpp"
 
 namespace pipeline {
 
 struct CalibrationEntry {
   double mach = 0, angle_deg = 0;
-  double restitution = 1, restitution_ci = 0;  // 95% half-width
+  double restitution = 1, restitution_ci = 0;  // crossing e, 95% half-width
   double gas_angle_deg = 0;                    // theta-beta-Mach target
-  double granular_angle_deg = 0;               // measured at the calibrated e (verification run)
+  double granular_angle_deg = 0;               // measured out of sample (see below)
   double granular_angle_ci_deg = 0;
+  // Fitted tables: e of this point predicted by the model refitted without
+  // it; granular_angle_deg is measured at that e with a seed the fit never
+  // used. Old tables: NaN, and granular_angle_deg is the in-sample rerun at
+  // the crossing e.
+  double loo_restitution = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct CalibrationTable {
   double gamma = 1.4;
-  std::vector<CalibrationEntry> entries;
+  std::vector<CalibrationEntry> entries;  // the training points
+  // Empty in an old table (entries only): pipeline run then interpolates.
+  std::optional<RestitutionModel> model;  // the chosen one
+  std::vector<RestitutionFit>
+      fits;  // every candidate (the chosen one and the Mach-only one at least)
+  const RestitutionFit* fit(RestitutionModel m) const;
 };
 
-CalibrationTable read_calibration(const std::string& path);  // InputError if malformed
+CalibrationTable read_calibration(
+    const std::string& path);  // InputError (file and key) if malformed
+// Coefficients are written to 17 significant digits (they round-trip exactly).
 void write_calibration(const CalibrationTable& t, const std::string& path);
-// Inverse-distance interpolation in (Mach, angle) scaled by (1, 5 deg); an
-// exact match returns its entry's e. A NaN angle (blunt bodies) weighs the
-// entries by Mach number alone. nullopt for an empty table.
-std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach, double angle_deg);
+// The restitution for a body at (mach, angle_deg). A fitted table evaluates
+// its model, clamped to e <= 1; a NaN angle (blunt bodies) takes the
+// Mach-only model, an extrapolation from wedges. An old table interpolates
+// by inverse distance in (Mach, angle) scaled by (1, 5 deg) (an exact match
+// returns its entry's e; a NaN angle weighs the entries by Mach alone).
+// nullopt for an empty table.
+std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
+                                              double angle_deg);
 
 }  // namespace pipeline

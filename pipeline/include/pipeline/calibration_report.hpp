@@ -1,0 +1,17 @@
+#pragma once
+// The out-of-sample summary and the markdown table of `pipeline calibrate`,
+// both computed from its calibration.json object.
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace pipeline {
+
+// RMS and max |error| of the granular angle against the gas angle, over the
+// leave-one-out runs and over the case studies that are not training points.
+nlohmann::json out_of_sample_summary(const nlohmann::json& calibration);
+
+// Method line, model table, leave-one-out table and case-study table, ready
+// to paste into docs (docs/calibration.md).
+std::string calibration_markdown(const nlohmann::json& calibration);
+
+}  // namespace pipeline

@@ -1,0 +1,37 @@
+#pragma once
+// Where the granular shock angle, swept over e, crosses the gas angle; and
+// which e to run next to sharpen that crossing.
+#include <optional>
+#include <vector>
+
+namespace pipeline {
+
+// One run of a sweep: e, the granular shock angle and its 95% half-width (deg).
+struct SweepPoint {
+  double e = 1, angle = 0, ci = 0;
+};
+
+// A run counts only when shockfit found a physical attached angle with a
+// usable interval (a failed fit can return any number; a misfit classed
+// "detached" has none).
+bool usable(const SweepPoint& p);
+
+struct Crossing {
+  double e = 1, e_ci = 0;        // 95% half-width, the angle intervals through the local slope
+  double e_low = 1, e_high = 1;  // the bracketing runs
+};
+// Linear interpolation of e where angle(e) crosses `target`, between
+// neighbouring usable runs (an unusable run in between is skipped, not a
+// break), scanning from the largest e downwards: the physically relevant,
+// least dissipative crossing. `pts` sorted by e.
+std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double target);
+
+// The next e to run: the midpoint of the bracketing interval (a chord
+// across the convex angle(e) puts the crossing too low); without a crossing,
+// a step towards the gas angle: halfway to the nearest run beyond the usable
+// ones (unusable there), else one sweep step beyond them (never above e = 1).
+// nullopt when that e has been run or nothing lies in that direction.
+// Rounded to 1e-4 (the cache directories are named by e).
+std::optional<double> next_restitution(const std::vector<SweepPoint>& pts, double target);
+
+}  // namespace pipeline

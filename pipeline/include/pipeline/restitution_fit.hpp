@@ -1,0 +1,66 @@
+#pragma once
+// Smooth models of the calibrated restitution e(M, theta): weighted least
+// squares over the calibration's training wedges, and the choice between
+// models by their leave-one-out error.
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pipeline {
+
+// Nested candidates, simplest first. The constant is a baseline: a model
+// must beat it out of sample to claim that e depends on Mach number at all.
+enum class RestitutionModel { constant, inverse_mach2, inverse_mach2_angle };
+inline constexpr RestitutionModel kRestitutionModels[] = {RestitutionModel::constant,
+                                                          RestitutionModel::inverse_mach2,
+                                                          RestitutionModel::inverse_mach2_angle};
+
+std::string model_key(RestitutionModel m);      // "inverse_mach2", as in the table
+std::string model_formula(RestitutionModel m);  // "e = c0 + c1/M^2", for people
+std::optional<RestitutionModel> model_from_key(const std::string& key);
+std::size_t parameter_count(RestitutionModel m);
+bool uses_angle(RestitutionModel m);
+
+// One calibrated wedge: the crossing e and its 95% half-width.
+struct RestitutionPoint {
+  double mach = 0, angle_deg = 0;
+  double restitution = 1, restitution_ci = 0;
+};
+
+struct RestitutionFit {
+  RestitutionModel model = RestitutionModel::inverse_mach2;
+  std::vector<double> coefficients;  // c0, c1, ... as in model_formula
+  double residual_sd = 0;            // unweighted sd of e about the fit, n - p degrees of freedom
+  double loo_rms = 0;  // weighted RMS of the leave-one-out e residuals (NaN: not computed)
+  // The model's e; the angle is ignored by models that do not use it.
+  double evaluate(double mach, double angle_deg) const;
+};
+
+// Weighted least squares with weights 1 / max(ci, floor)^2. nullopt when
+// there are fewer points than coefficients or the design is singular
+// (e.g. every point at one Mach number). loo_rms is left NaN.
+std::optional<RestitutionFit> fit_restitution(std::span<const RestitutionPoint> points,
+                                              RestitutionModel model);
+
+// e of point i predicted by the model fitted to every other point.
+std::optional<double> leave_one_out_restitution(std::span<const RestitutionPoint> points,
+                                                RestitutionModel model, std::size_t i);
+
+// sqrt(sum w_i r_i^2 / sum w_i) over the leave-one-out residuals
+// r_i = e_i - e_fit(-i)(M_i, theta_i), with the fit's weights. nullopt when
+// some left-out fit is impossible.
+std::optional<double> leave_one_out_rms(std::span<const RestitutionPoint> points,
+                                        RestitutionModel model);
+
+struct ModelChoice {
+  std::vector<RestitutionFit> candidates;  // every model that could be fitted, with loo_rms
+  std::size_t chosen = 0;                  // index into candidates
+  const RestitutionFit& fit() const { return candidates.at(chosen); }
+};
+// Fits every model and picks the smallest leave-one-out error; a richer
+// model must lower it by more than a rounding-level margin, so exact data
+// (every model at zero) keeps the simplest. nullopt when no model fits.
+std::optional<ModelChoice> choose_restitution_model(std::span<const RestitutionPoint> points);
+
+}  // namespace pipeline

@@ -1,0 +1,141 @@
+#include "pipeline/calibration_report.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+namespace pipeline {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Digits shown: e to 1e-4 (its interval is ~1e-3), angles to 0.01 deg.
+constexpr int kRestitutionDecimals = 4;
+constexpr int kAngleDecimals = 2;
+
+double num(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
+std::string fixed(double v, int decimals) {
+  if (!std::isfinite(v)) return "n/a";
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(decimals);
+  os << v;
+  return os.str();
+}
+
+std::string general(double v, int digits) {
+  if (!std::isfinite(v)) return "n/a";
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+nlohmann::json rms_max(const std::vector<double>& errors) {
+  if (errors.empty()) return {{"n", 0}, {"rms_deg", nullptr}, {"max_abs_deg", nullptr}};
+  double ss = 0, mx = 0;
+  for (const double x : errors) {
+    ss += x * x;
+    mx = std::max(mx, std::abs(x));
+  }
+  return {{"n", errors.size()},
+          {"rms_deg", std::sqrt(ss / static_cast<double>(errors.size()))},
+          {"max_abs_deg", mx}};
+}
+
+const nlohmann::json* chosen(const nlohmann::json& c) {
+  for (const auto& f : c.at("candidates"))
+    if (f.value("model", "") == c.value("model", "")) return &f;
+  return nullptr;
+}
+}  // namespace
+
+nlohmann::json out_of_sample_summary(const nlohmann::json& c) {
+  std::vector<double> loo, cases;
+  for (const auto& p : c.at("points"))
+    if (std::isfinite(num(p, "loo_angle_error_deg"))) loo.push_back(num(p, "loo_angle_error_deg"));
+  for (const auto& k : c.at("case_studies"))
+    if (!k.value("in_sample", false) && std::isfinite(num(k, "angle_error_deg")))
+      cases.push_back(num(k, "angle_error_deg"));
+  const auto* f = chosen(c);
+  return {{"leave_one_out", rms_max(loo)},
+          {"case_studies", rms_max(cases)},
+          {"residual_sd_restitution", f ? num(*f, "residual_sd") : kNaN}};
+}
+
+std::string calibration_markdown(const nlohmann::json& c) {
+  std::ostringstream md;
+  const auto* f = chosen(c);
+  const auto& s = c.at("summary");
+  md << "Target: the gamma = " << general(num(c, "target_gamma"), 3)
+     << " theta-beta-Mach shock angle. e swept over";
+  for (const auto& e : c.at("restitutions")) md << " " << e.get<double>();
+  md << ", then " << c.value("refinements", 0)
+     << " run(s) bisecting the bracketing interval; crossing by linear interpolation between the "
+        "bracketing e "
+        "(95% half-width from the angle intervals through the local slope).\n\n";
+
+  md << "| model | coefficients | sd of e about the fit | leave-one-out RMS of e (weighted) "
+        "|\n|---|---|---|---|\n";
+  for (const auto& m : c.at("candidates")) {
+    const bool is_chosen = m.value("model", "") == c.value("model", "");
+    md << "| " << (is_chosen ? "**" : "") << m.value("formula", "")
+       << (is_chosen ? "** (chosen)" : "") << " |";
+    const auto& co = m.at("coefficients");
+    for (std::size_t i = 0; i < co.size(); ++i)
+      md << (i ? ", " : " ") << "c" << i << " = " << general(co[i].get<double>(), 6);
+    md << " | " << general(num(m, "residual_sd"), 3) << " | " << general(num(m, "loo_rms"), 3)
+       << " |\n";
+  }
+  md << "\nResidual scatter of e about the chosen fit (sd, n - p degrees of freedom): "
+     << general(f ? num(*f, "residual_sd") : kNaN, 3) << ".\n\n";
+
+  md << "Leave-one-out: each training wedge refitted without it and run at that fit's e with seed "
+        "granular.seed + "
+     << c.at("seed_offsets").value("leave_one_out", 0) << " (the sweeps used seed, seed + 1).\n\n";
+  md << "| point (M / theta) | crossing e +- 95% | e_fit (left out) | granular angle +- 95% (deg) "
+        "| gas angle (deg) "
+        "| error (deg) |\n|---|---|---|---|---|---|\n";
+  for (const auto& p : c.at("points")) {
+    md << "| " << general(num(p, "mach"), 3) << " / " << general(num(p, "angle_deg"), 3) << " | "
+       << fixed(num(p, "restitution"), kRestitutionDecimals) << " +- "
+       << fixed(num(p, "restitution_ci"), kRestitutionDecimals) << " | "
+       << fixed(num(p, "loo_restitution"), kRestitutionDecimals) << " | "
+       << fixed(num(p, "loo_granular_angle_deg"), kAngleDecimals) << " +- "
+       << fixed(num(p, "loo_granular_angle_ci_deg"), kAngleDecimals) << " | "
+       << fixed(num(p, "gas_angle_deg"), kAngleDecimals) << " | "
+       << fixed(num(p, "loo_angle_error_deg"), kAngleDecimals) << " |\n";
+  }
+  const auto& l = s.at("leave_one_out");
+  md << "\nOut-of-sample angle error over " << l.value("n", 0) << " wedges: RMS "
+     << fixed(num(l, "rms_deg"), kAngleDecimals) << " deg, max |error| "
+     << fixed(num(l, "max_abs_deg"), kAngleDecimals) << " deg.\n\n";
+
+  md << "Case studies (not training points) at the fitted e, seed granular.seed + "
+     << c.at("seed_offsets").value("case_studies", 0) << ":\n\n";
+  md << "| case | e_fit | granular angle +- 95% (deg) | gas angle (deg) | error (deg) "
+        "|\n|---|---|---|---|---|\n";
+  for (const auto& k : c.at("case_studies")) {
+    md << "| " << k.value("scene", "")
+       << (k.value("in_sample", false) ? " (in the training set)" : "") << " | "
+       << fixed(num(k, "restitution"), kRestitutionDecimals) << " | "
+       << fixed(num(k, "granular_angle_deg"), kAngleDecimals) << " +- "
+       << fixed(num(k, "granular_angle_ci_deg"), kAngleDecimals) << " | "
+       << fixed(num(k, "gas_angle_deg"), kAngleDecimals) << " | "
+       << fixed(num(k, "angle_error_deg"), kAngleDecimals) << " |\n";
+  }
+  const auto& cs = s.at("case_studies");
+  md << "\nCase-study angle error: RMS " << fixed(num(cs, "rms_deg"), kAngleDecimals)
+     << " deg, max |error| " << fixed(num(cs, "max_abs_deg"), kAngleDecimals) << " deg.\n\n";
+  const auto& cpu = c.at("cpu_seconds");
+  md << "CPU: " << fixed(num(cpu, "sweeps"), 0) << " s for the sweeps, "
+     << fixed(num(cpu, "out_of_sample"), 0) << " s for the out-of-sample runs, "
+     << fixed(num(cpu, "total"), 0) << " s in all (cached runs count ~0); wall "
+     << fixed(num(c, "wall_seconds"), 0) << " s.\n";
+  return md.str();
+}
+
+}  // namespace pipeline

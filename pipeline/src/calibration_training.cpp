@@ -1,0 +1,57 @@
+#include "pipeline/calibration_training.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "scene/gasdynamics.hpp"
+
+namespace pipeline {
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+// Two wedges are the same case when Mach and angle agree to this (the
+// values are written by hand to at most a few decimals).
+constexpr double kSameWedgeTolerance = 1e-9;
+}  // namespace
+
+bool same_wedge(const WedgePoint& a, const WedgePoint& b) {
+  return std::abs(a.mach - b.mach) < kSameWedgeTolerance &&
+         std::abs(a.angle_deg - b.angle_deg) < kSameWedgeTolerance;
+}
+
+std::vector<WedgePoint> training_wedges(const std::vector<double>& machs,
+                                        const std::vector<double>& angles_deg, double gamma,
+                                        const std::vector<WedgePoint>& excluded) {
+  std::vector<WedgePoint> out;
+  for (const double m : machs)
+    for (const double a : angles_deg) {
+      const WedgePoint p{m, a};
+      if (!scene::oblique_shock_beta(m, a * kDeg, gamma)) continue;  // detached: no angle to match
+      bool clash = false;
+      for (const auto& x : excluded) clash = clash || same_wedge(p, x);
+      if (!clash) out.push_back(p);
+    }
+  return out;
+}
+
+std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths) {
+  std::vector<WedgePoint> out;
+  for (const auto& path : scene_paths) {
+    const scene::Scene s = scene::load_scene(path);
+    if (s.body && s.body->kind == scene::BodyKind::wedge)
+      out.push_back({s.freestream.mach, s.body->angle_deg});
+  }
+  return out;
+}
+
+scene::Scene training_scene(const WedgePoint& p) {
+  std::ostringstream name, yaml;
+  name << "train_M" << p.mach << "_" << p.angle_deg;
+  yaml << "name: " << name.str() << "\n"
+       << "body: {kind: wedge, angle_deg: " << p.angle_deg << ", length: 1.0}\n"
+       << "freestream: {mach: " << p.mach << ", gamma: 1.4}\n";
+  return scene::parse_scene(yaml.str(), "calibrate training wedge " + name.str());
+}
+
+}  // namespace pipeline

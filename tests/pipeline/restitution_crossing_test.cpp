@@ -1,0 +1,54 @@
+// The crossing of the granular angle with the gas angle over a sweep of e,
+// and the next e to run (cases seen in the calibration sweeps).
+#include "pipeline/restitution_crossing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+using pipeline::SweepPoint;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTolerance = 1e-12;
+}  // namespace
+
+TEST(RestitutionCrossing, InterpolatesBetweenNeighbours) {
+  const std::vector<SweepPoint> pts{{0.96, 27.25, 1.0}, {0.98, 32.28, 1.0}, {1.0, 48.68, 0.26}};
+  const auto c = pipeline::find_crossing(pts, 35.87);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_NEAR(c->e, 0.98 + 0.02 * (35.87 - 32.28) / (48.68 - 32.28), kTolerance);
+  EXPECT_NEAR(c->e_ci, 0.5 * 1.26 * 0.02 / (48.68 - 32.28), kTolerance);
+  EXPECT_EQ(c->e_low, 0.98);
+  EXPECT_EQ(c->e_high, 1.0);
+  EXPECT_NEAR(*pipeline::next_restitution(pts, 35.87), 0.99, kTolerance);
+}
+
+TEST(RestitutionCrossing, AMisfitInsideTheBracketIsSkipped) {
+  // M2.5/8: the run at e = 0.99 was classed detached (no angle); the
+  // crossing lies between its usable neighbours, and 0.99 is not rerun.
+  const std::vector<SweepPoint> pts{
+      {0.96, 19.23, 0.71}, {0.98, 25.84, 0.76}, {0.99, kNaN, kNaN}, {1.0, 34.79, 0.43}};
+  const auto c = pipeline::find_crossing(pts, 30.01);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->e_low, 0.98);
+  EXPECT_EQ(c->e_high, 1.0);
+  EXPECT_FALSE(pipeline::next_restitution(pts, 30.01).has_value());
+}
+
+TEST(RestitutionCrossing, SearchesTowardsTheGasAngleWithoutACrossing) {
+  // M2.5/20: e = 1 too noisy to use (ci 6 deg), everything usable below
+  // the gas angle: halfway up to the unusable run.
+  const std::vector<SweepPoint> up{{0.96, 32.16, 1.45}, {0.98, 38.25, 1.01}, {1.0, 58.57, 6.03}};
+  EXPECT_FALSE(pipeline::find_crossing(up, 42.89).has_value());
+  EXPECT_NEAR(*pipeline::next_restitution(up, 42.89), 0.99, kTolerance);
+  // M4.5/8: e = 0.96 misfit, the usable runs above the gas angle: halfway down.
+  const std::vector<SweepPoint> down{{0.96, kNaN, kNaN}, {0.98, 19.34, 0.42}, {1.0, 23.35, 0.15}};
+  EXPECT_NEAR(*pipeline::next_restitution(down, 18.84), 0.97, kTolerance);
+  // Nothing below: one sweep step down.
+  const std::vector<SweepPoint> step{{0.98, 19.34, 0.42}, {1.0, 23.35, 0.15}};
+  EXPECT_NEAR(*pipeline::next_restitution(step, 18.84), 0.96, kTolerance);
+  // Below the gas angle even at e = 1: no e <= 1 can reach it.
+  const std::vector<SweepPoint> top{{0.98, 19.0, 0.4}, {1.0, 20.0, 0.2}};
+  EXPECT_FALSE(pipeline::next_restitution(top, 25.0).has_value());
+}

@@ -1,0 +1,134 @@
+// Restitution models: the fit, the leave-one-out choice, and the training set.
+#include "pipeline/restitution_fit.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pipeline/calibration_training.hpp"
+#include "pipeline/studies.hpp"
+
+namespace {
+using pipeline::RestitutionModel;
+using pipeline::RestitutionPoint;
+
+// Exact arithmetic on well-conditioned synthetic data leaves rounding only.
+constexpr double kCoefficientTolerance = 1e-10;
+
+// The default training grid with e from a known law plus `noise(i)`.
+template <class Law, class Noise>
+std::vector<RestitutionPoint> synthetic(Law law, Noise noise) {
+  std::vector<RestitutionPoint> pts;
+  int i = 0;
+  for (const double m : {2.5, 3.5, 4.5, 6.0})
+    for (const double a : {8.0, 14.0, 20.0}) {
+      pts.push_back({m, a, law(m, a) + noise(i), 0.002});
+      ++i;
+    }
+  return pts;
+}
+}  // namespace
+
+TEST(RestitutionFit, RecoversKnownCoefficients) {
+  const auto mach_only =
+      synthetic([](double m, double) { return 0.956 + 0.25 / (m * m); }, [](int) { return 0.0; });
+  const auto f = pipeline::fit_restitution(mach_only, RestitutionModel::inverse_mach2);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->coefficients[0], 0.956, kCoefficientTolerance);
+  EXPECT_NEAR(f->coefficients[1], 0.25, kCoefficientTolerance);
+  EXPECT_NEAR(f->residual_sd, 0.0, kCoefficientTolerance);
+
+  const auto with_angle =
+      synthetic([](double m, double a) { return 0.95 + 0.2 / (m * m) + 0.0007 * a; },
+                [](int) { return 0.0; });
+  const auto g = pipeline::fit_restitution(with_angle, RestitutionModel::inverse_mach2_angle);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_NEAR(g->coefficients[0], 0.95, kCoefficientTolerance);
+  EXPECT_NEAR(g->coefficients[1], 0.2, kCoefficientTolerance);
+  EXPECT_NEAR(g->coefficients[2], 0.0007, kCoefficientTolerance);
+  EXPECT_NEAR(g->evaluate(5.0, 20.0), 0.95 + 0.2 / 25.0 + 0.014, kCoefficientTolerance);
+}
+
+TEST(RestitutionFit, WeightsFollowTheCrossingInterval) {
+  // Two points at M = 3: a precise one and a vague one. The constant model's
+  // value must sit near the precise one.
+  const std::vector<RestitutionPoint> pts{{3, 10, 0.98, 0.001}, {3, 14, 0.96, 0.01}};
+  const auto f = pipeline::fit_restitution(pts, RestitutionModel::constant);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->coefficients[0], (0.98 * 1e6 + 0.96 * 1e4) / (1e6 + 1e4), kCoefficientTolerance);
+}
+
+TEST(RestitutionFit, SingularDesignIsRefused) {
+  // Every point at one Mach number: 1 and 1/M^2 are the same column.
+  const std::vector<RestitutionPoint> pts{
+      {3, 8, 0.98, 0.002}, {3, 14, 0.97, 0.002}, {3, 20, 0.96, 0.002}};
+  EXPECT_FALSE(pipeline::fit_restitution(pts, RestitutionModel::inverse_mach2).has_value());
+  EXPECT_FALSE(
+      pipeline::fit_restitution(std::vector<RestitutionPoint>{}, RestitutionModel::constant)
+          .has_value());
+}
+
+TEST(RestitutionFit, LeaveOneOutPicksTheRightModel) {
+  // Noise of 0.002 that alternates in sign along Mach and is independent of
+  // the angle: the angle term only fits noise and loses out of sample.
+  const auto noise = [](int i) {
+    return (i % 2 == 0 ? 1.0 : -1.0) * 0.002 * ((i % 3) == 1 ? 0.5 : 1.0);
+  };
+  const auto mach_only = synthetic([](double m, double) { return 0.956 + 0.25 / (m * m); }, noise);
+  const auto c1 = pipeline::choose_restitution_model(mach_only);
+  ASSERT_TRUE(c1.has_value());
+  EXPECT_EQ(c1->fit().model, RestitutionModel::inverse_mach2);
+  EXPECT_EQ(c1->candidates.size(), 3u);
+
+  // A real angle dependence (0.02 over 8-20 deg) well above the same noise.
+  const auto with_angle =
+      synthetic([](double m, double a) { return 0.94 + 0.25 / (m * m) + 0.0017 * a; }, noise);
+  const auto c2 = pipeline::choose_restitution_model(with_angle);
+  ASSERT_TRUE(c2.has_value());
+  EXPECT_EQ(c2->fit().model, RestitutionModel::inverse_mach2_angle);
+
+  // Exact Mach-only data: both adequate models score ~0; the simpler wins.
+  const auto exact =
+      synthetic([](double m, double) { return 0.956 + 0.25 / (m * m); }, [](int) { return 0.0; });
+  EXPECT_EQ(pipeline::choose_restitution_model(exact)->fit().model,
+            RestitutionModel::inverse_mach2);
+}
+
+TEST(RestitutionFit, LeaveOneOutPredictionIgnoresThePoint) {
+  auto pts =
+      synthetic([](double m, double) { return 0.956 + 0.25 / (m * m); }, [](int) { return 0.0; });
+  pts[4].restitution = 0.5;  // an outlier: its own fit would be pulled, the left-out one is not
+  const auto e = pipeline::leave_one_out_restitution(pts, RestitutionModel::inverse_mach2, 4);
+  ASSERT_TRUE(e.has_value());
+  EXPECT_NEAR(*e, 0.956 + 0.25 / (pts[4].mach * pts[4].mach), kCoefficientTolerance);
+}
+
+TEST(CalibrationTraining, DefaultSetAvoidsTheCaseStudies) {
+  const pipeline::CalibrateOptions o;
+  std::vector<std::string> wedges;
+  for (const auto& p : pipeline::case_study_scenes()) wedges.push_back(p);
+  const auto cases = pipeline::wedge_points(wedges);
+  ASSERT_GE(cases.size(), 3u);  // M3/10, M4/15, M5/20
+  const auto train = pipeline::training_wedges(o.machs, o.angles_deg, 1.4, cases);
+  EXPECT_GE(train.size(), 8u);
+  for (const auto& t : train)
+    for (const auto& c : cases)
+      EXPECT_FALSE(pipeline::same_wedge(t, c)) << t.mach << " / " << t.angle_deg;
+  // Even a grid through a case study leaves it out.
+  const auto through = pipeline::training_wedges({3.0, 4.0}, {10.0, 15.0}, 1.4, cases);
+  ASSERT_EQ(through.size(), 2u);  // M3/15, M4/10
+  for (const auto& t : through)
+    for (const auto& c : cases) EXPECT_FALSE(pipeline::same_wedge(t, c));
+}
+
+TEST(CalibrationTraining, DetachedWedgesAreLeftOut) {
+  // Mach 1.5 detaches above ~12 deg at gamma 1.4.
+  const auto t = pipeline::training_wedges({1.5}, {8.0, 20.0}, 1.4, {});
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].angle_deg, 8.0);
+  const auto s = pipeline::training_scene(t[0]);
+  ASSERT_TRUE(s.body.has_value());
+  EXPECT_DOUBLE_EQ(s.freestream.mach, 1.5);
+  EXPECT_FALSE(s.granular.restitution_given);  // granular settings at their defaults
+}

@@ -113,7 +113,8 @@ StationFit joint_station(const StationFit& fd, const StationFit& fv) {
   j.distance = 0.5 * (fd.distance + fv.distance);
   j.shock = fd.surface + j.distance * fd.normal;
   // The two fields' noises come from the same disks; treated as independent
-  // here (the shock-line interval does not use the per-station widths).
+  // here: the per-point noise is a small part of the shock line's bootstrap
+  // interval, which the scatter between stations dominates.
   j.ci = 0.5 * std::hypot(fd.ci, fv.ci);
   return j;
 }
@@ -365,15 +366,17 @@ ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
 
   // With both a density and v, the shock is their joint mid-point (one
   // definition, not whichever field happens to be less noisy in this run).
-  if (!dens.empty() && lat.has(kVelocityField)) {
-    ShockResult r = locate_shock_joint(s, lat, dens, kVelocityField);
-    for (const std::string& f : {dens, std::string(kVelocityField)})
-      r.candidates.update(locate_shock_with(s, lat, f).candidates);
-    return r;
-  }
+  // Where the joint shock finds nothing (too few stations where both fields
+  // jump) but one field alone does, that field's shock is reported rather
+  // than none.
   std::vector<ShockResult> cand;
   if (!dens.empty()) cand.push_back(locate_shock_with(s, lat, dens));
   if (lat.has(kVelocityField)) cand.push_back(locate_shock_with(s, lat, kVelocityField));
+  if (cand.size() == 2) {
+    ShockResult joint = locate_shock_joint(s, lat, dens, kVelocityField);
+    for (const ShockResult& c : cand) joint.candidates.update(c.candidates);
+    if (joint.shock != "none" || (cand[0].shock == "none" && cand[1].shock == "none")) return joint;
+  }
   if (cand.empty())
     throw scene::InputError("lattice has none of the fields shockfit can use (volume_fraction, rho, number_density, v)");
   // Prefer a field that finds a shock; where both do but disagree on its

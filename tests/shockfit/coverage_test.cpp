@@ -7,9 +7,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <string>
@@ -60,20 +60,25 @@ TEST(Coverage, WedgeAngleIntervalCoversSeedToSeedTruth) {
 
   const auto n = static_cast<double>(runs.size());
   const double mean =
-      std::accumulate(runs.begin(), runs.end(), 0.0, [](double a, const SeedAngle& r) { return a + r.angle_deg; }) / n;
+      std::accumulate(runs.begin(), runs.end(), 0.0,
+                      [](double a, const SeedAngle& r) { return a + r.angle_deg; }) /
+      n;
   double ss = 0.0;
   for (const SeedAngle& r : runs) ss += (r.angle_deg - mean) * (r.angle_deg - mean);
   const double sd = std::sqrt(ss / (n - 1.0));
-  const auto covered = std::count_if(runs.begin(), runs.end(),
-                                     [&](const SeedAngle& r) { return std::abs(r.angle_deg - mean) <= r.half_width_deg; });
+  const auto covered = std::count_if(runs.begin(), runs.end(), [&](const SeedAngle& r) {
+    return std::abs(r.angle_deg - mean) <= r.half_width_deg;
+  });
   const double coverage = static_cast<double>(covered) / n;
   std::vector<double> hw;
   for (const SeedAngle& r : runs) hw.push_back(r.half_width_deg);
   std::nth_element(hw.begin(), hw.begin() + static_cast<long>(hw.size() / 2), hw.end());
   const double median_hw = hw[hw.size() / 2];
   RecordProperty("coverage", std::to_string(coverage));
-  std::printf("coverage %.3f over %zu attached of %d seeds: mean %.3f deg, sd %.3f deg, median half-width %.3f deg\n",
-              coverage, runs.size(), kSeeds, mean, sd, median_hw);
+  std::printf(
+      "coverage %.3f over %zu attached of %d seeds: mean %.3f deg, sd %.3f deg, median half-width "
+      "%.3f deg\n",
+      coverage, runs.size(), kSeeds, mean, sd, median_hw);
   EXPECT_GE(coverage, kMinCoverage);
   EXPECT_LE(coverage, kMaxCoverage);
   EXPECT_LT(median_hw, kWidthFactor * kZ95 * sd);

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <limits>
+#include <numbers>
 
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
@@ -180,8 +180,8 @@ namespace {
 // Fits one station along `normal` from `origin`; index -1 is the stagnation line.
 using StationFitter = std::function<StationFit(int index, scene::Vec2 origin, scene::Vec2 normal)>;
 
-ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat, const std::string& field,
-                               const StationFitter& fit_at);
+ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
+                               const std::string& field, const StationFitter& fit_at);
 
 }  // namespace
 
@@ -194,8 +194,8 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, 
   });
 }
 
-ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& lat, const std::string& density,
-                               const std::string& velocity) {
+ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& lat,
+                               const std::string& density, const std::string& velocity) {
   require_body(s);
   (void)lat.field(density);
   (void)lat.field(velocity);
@@ -213,8 +213,8 @@ ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& lat,
 
 namespace {
 
-ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat, const std::string& field,
-                               const StationFitter& fit_at) {
+ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
+                               const std::string& field, const StationFitter& fit_at) {
   require_body(s);
   const scene::BodyGeometry g = scene::make_body(*s.body);
   const scene::Domain d = scene::scene_domain(s);

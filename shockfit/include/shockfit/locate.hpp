@@ -49,6 +49,11 @@ struct ShockResult {
 ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& fields);
 // One named field, no automatic choice.
 ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& fields, const std::string& field);
+// The joint shock: per station, the mean of the jump mid-points of the
+// density and the velocity field (docs/shockfit.md, "Shock definition");
+// the stagnation line uses the density alone.
+ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& fields,
+                               const std::string& density, const std::string& velocity);
 
 // DIR/shock.csv, DIR/summary.json, DIR/shock.png and DIR/profile.png (the
 // PNGs only when gnuplot runs; otherwise a warning on stderr).

@@ -97,8 +97,7 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
                              cells, h));
     }
   if (!scene::attached_shock_beta(s) && s.pipeline.reference_grid && !s.pipeline.levels.empty()) {
-    const double finest = *std::min_element(s.pipeline.levels.begin(), s.pipeline.levels.end());
-    const double level = s.pipeline.reference_level.value_or(0.5 * finest);
+    const double level = reference_grid_level(s.pipeline);
     const double h = s.mesh.h_min * L * level;
     e.grids.push_back(grid(s, level_name("reference", level), kCellsPerH2 * area / (h * h), h));
   }

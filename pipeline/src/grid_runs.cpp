@@ -1,5 +1,6 @@
 #include "pipeline/grid_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -62,6 +63,24 @@ std::string level_name(const std::string& family, double level) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "%s_h%g", family.c_str(), level);
   return buf;
+}
+
+bool same_level(double a, double b) {
+  constexpr double kLevelSlack = 1e-9;
+  return std::abs(a - b) <= kLevelSlack * std::max(std::abs(a), std::abs(b));
+}
+
+double reference_grid_level(const scene::PipelineParams& p) {
+  if (p.reference_level) return *p.reference_level;
+  if (p.levels.empty()) return 0.5;
+  const double finest = *std::min_element(p.levels.begin(), p.levels.end());
+  auto has = [&](double l) { return std::any_of(p.levels.begin(), p.levels.end(), [&](double x) { return same_level(x, l); }); };
+  double best = 0.5 * finest;
+  for (const double a : p.levels) {
+    const double l = 0.5 * a;
+    if (l < finest && !same_level(l, finest) && has(2.0 * a) && l > best) best = l;
+  }
+  return best;
 }
 
 GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,

@@ -74,12 +74,9 @@ Reference reference_for(const scene::Scene& s) {
   return r;
 }
 
-// Levels are user numbers (2.8, 1.4): equal within this relative slack.
-constexpr double kLevelSlack = 1e-9;
-
 const GridRun* at_level(const std::vector<GridRun>& fam, double level) {
   for (const auto& r : fam)
-    if (std::abs(r.level - level) <= kLevelSlack * level) return &r;
+    if (same_level(r.level, level)) return &r;
   return nullptr;
 }
 
@@ -92,13 +89,13 @@ nlohmann::json convergence_json(const GridConvergence& g) {
 // Bodies without an exact field solution: one uniform grid finer than every
 // family member (in neither family), and Richardson extrapolation of the
 // standoff, drag and stagnation pressure from it and the uniform grids two
-// and four times coarser. Null when the scene needs none.
+// and four times coarser (grid_runs.hpp: reference_grid_level). Null when
+// the scene needs none.
 nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids, const PrimaryError& primary,
                                const std::vector<GridRun>& uniform) {
   const auto& p = s.pipeline;
   if (primary.name == "l1_density" || !p.reference_grid || !p.cfd || p.levels.empty()) return nullptr;
-  const double finest = *std::min_element(p.levels.begin(), p.levels.end());
-  const double level = p.reference_level.value_or(0.5 * finest);
+  const double level = reference_grid_level(p);
   constexpr double kRatio = 2.0;
   const GridRun* r2 = at_level(uniform, level * kRatio);
   const GridRun* r3 = at_level(uniform, level * kRatio * kRatio);

@@ -55,4 +55,13 @@ class GridRunner {
 
 std::string level_name(const std::string& family, double level);
 
+// Level of the independent reference grid: pipeline.reference_level, else
+// the coarsest level finer than every family member whose 2x and 4x coarser
+// levels are both family levels (a Richardson triple at ratio 2: 0.7 for the
+// default levels, three times the finest grid's cost rather than the eight
+// times of half the finest level), else half the finest level.
+double reference_grid_level(const scene::PipelineParams& p);
+// Levels equal within a relative slack (they are user numbers: 2.8, 1.4).
+bool same_level(double a, double b);
+
 }  // namespace pipeline

@@ -33,6 +33,9 @@ constexpr double kRefParticles = 3000;
 constexpr double kRefRadius = 60;
 constexpr double kRefPacking = 0.1;
 constexpr double kWarmupFlowThroughs = 2;  // granular's detected warm-up, typically
+// A shock angle whose 95% half-width exceeds this is a fit through noise
+// (small systems near detachment): tabulated, but not compared or trained on.
+constexpr double kMaxResolvedCiDeg = 10;
 
 std::string point_dir(const std::string& out, const ParametricPoint& p) {
   return out + "/points/" + point_key(p);
@@ -100,8 +103,6 @@ nlohmann::json row_of(const ParametricPoint& p, const std::vector<std::string>& 
     r["billig_standoff"] = scene::billig_standoff_cylinder(p.mach);
   }
   r["case_study"] = is_case_study(p);
-  // Training data for the e calibration: wedges whose granular stream is the
-  // gas's Mach at the default packing, attached, not a case study.
   const std::string dir = point_dir(out, p);
   nlohmann::json pred;
   if (fs::exists(dir + "/prediction.json")) {
@@ -116,9 +117,17 @@ nlohmann::json row_of(const ParametricPoint& p, const std::vector<std::string>& 
   r["standoff"] = num(pred, "standoff");
   r["standoff_ci"] = num(pred, "standoff_ci");
   r["cpu_seconds"] = num(pred, "predictor_cpu_seconds");
+  // Resolved: a shock angle between the wall and the normal with a usable
+  // interval, or a positive standoff with an interval.
+  const double b = r["beta_deg"].get<double>(), bci = r["beta_ci_deg"].get<double>();
+  const double s = r["standoff"].get<double>(), sci = r["standoff_ci"].get<double>();
+  r["resolved"] = p.body == "wedge"
+                      ? std::isfinite(b) && b > p.theta_deg && b < 90 && bci <= kMaxResolvedCiDeg
+                      : std::isfinite(s) && s > 0 && std::isfinite(sci);
+  // Training data for the e calibration: wedges whose granular stream is the
+  // gas's Mach at the default packing, resolved, not a case study.
   r["calibration_training"] = p.body == "wedge" && !is_case_study(p) && p.granular_mach == p.mach &&
-                              p.packing == kRefPacking &&
-                              std::isfinite(r["beta_deg"].get<double>());
+                              p.packing == kRefPacking && r["resolved"].get<bool>();
   return r;
 }
 
@@ -210,7 +219,12 @@ nlohmann::json run_parametric(const ParametricOptions& o) {
   for_each_in_processes(static_cast<int>(run_now.size()), o.jobs, [&](int k) {
     const auto& p = run_now[static_cast<std::size_t>(k)];
     const bool ok = run_point(p, point_dir(o.out_dir, p));
-    progress.update(k + 1, point_key(p));
+    // Children finish out of order: count the points on disk, not k.
+    const auto finished =
+        std::count_if(run_now.begin(), run_now.end(), [&](const ParametricPoint& q) {
+          return done(o.out_dir, q) || fs::exists(point_dir(o.out_dir, q) + "/failed.json");
+        });
+    progress.update(static_cast<double>(finished), point_key(p));
     return ok ? 0 : 1;
   });
   progress.finish();

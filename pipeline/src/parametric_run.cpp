@@ -104,7 +104,7 @@ nlohmann::json row_of(const ParametricPoint& p, const std::vector<std::string>& 
   }
   r["case_study"] = is_case_study(p);
   const std::string dir = point_dir(out, p);
-  nlohmann::json pred;
+  nlohmann::json pred = nlohmann::json::object();
   if (fs::exists(dir + "/prediction.json")) {
     pred = nlohmann::json::parse(scene::read_file(dir + "/prediction.json"));
     r["status"] = "ok";

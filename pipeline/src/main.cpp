@@ -7,6 +7,7 @@
 
 #include "pipeline/cost_estimate.hpp"
 #include "pipeline/league.hpp"
+#include "pipeline/parametric.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
@@ -99,6 +100,19 @@ int main(int argc, char** argv) {
     studies->add_option("--docs", so.docs_table, "summary table to write (default: docs/case_studies.md)");
     studies->add_option("--np", so.np, "processes")->check(CLI::PositiveNumber);
 
+    auto* param = app.add_subcommand(
+        "parametric", "granular parameter studies against the gas (docs/parametric.md)");
+    pipeline::ParametricOptions pa;
+    param->add_option("--out", pa.out_dir, "output directory (one cached directory per point)")
+        ->required();
+    param->add_flag("--quick", pa.quick,
+                    "a reduced grid for a quick look (writes no docs unless --docs)");
+    param->add_option("--budget-cpu-seconds", pa.budget_cpu_seconds,
+                      "CPU seconds the grid is sized to (default 1200)");
+    param->add_option("--jobs", pa.jobs, "points at once (processes)")->check(CLI::PositiveNumber);
+    param->add_option("--docs", pa.docs_page,
+                      "page to write (default: docs/parametric.md; - for none)");
+
     if (const auto code = scene::parse_cli(app, argc, argv)) return *code;
 
     if (run->parsed()) {
@@ -152,6 +166,11 @@ int main(int argc, char** argv) {
       co.verify = !no_verify;
       const auto r = pipeline::run_calibration(co);
       std::cout << r.dump(2) << "\n";
+      return 0;
+    }
+    if (param->parsed()) {
+      if (pa.quick && pa.docs_page.empty()) pa.docs_page = "-";
+      pipeline::run_parametric(pa);
       return 0;
     }
     if (studies->parsed()) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "pipeline/plot.hpp"
+#include "pipeline/process_pool.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/cli.hpp"
@@ -71,9 +72,6 @@ scene::Scene scene_with(const std::string& scene_path,
   return s;
 }
 
-namespace {
-
-// Runs `work(k)` for k in [0, n) in up to `jobs` child processes at a time.
 void for_each_in_processes(int n, int jobs, const std::function<int(int)>& work) {
   if (jobs <= 1) {
     for (int k = 0; k < n && !scene::interrupted(); ++k) work(k);
@@ -98,6 +96,8 @@ void for_each_in_processes(int n, int jobs, const std::function<int(int)>& work)
   }
   if (failed) scene::log_line("pipeline: " + std::to_string(failed) + " sweep case(s) failed; see their directories", true);
 }
+
+namespace {
 
 double num(const nlohmann::json& j, const char* k) {
   return j.contains(k) && j[k].is_number() ? j[k].get<double>() : NAN;

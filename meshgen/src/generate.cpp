@@ -34,7 +34,7 @@ namespace {
 // the band always holds a few fine cells across even for a sure prediction.
 constexpr double kDefaultBandCells = 3.0;
 constexpr double kMinBandCells = 2.0;
-// Target cell count: accepted within kTargetTolerance (the 10%); a
+// Target cell count: accepted within kTargetTolerance (10%: a user asking for 100k cells gets 90-110k); a
 // retry is made beyond kTargetRetry, up to kMaxTargetAttempts meshes.
 constexpr double kTargetTolerance = 0.10;
 constexpr double kTargetRetry = 0.05;

@@ -20,6 +20,7 @@
 #include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
+#include "scene/dir_lock.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
@@ -217,6 +218,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const auto predictor = make_predictor(o.predictor);  // unknown names fail before any work
   const auto t_start = std::chrono::steady_clock::now();
   scene::make_dirs(o.out_dir);
+  const scene::DirLock lock(o.out_dir);
   const std::string calib_note = apply_calibration(s, o.calibration_path);
   if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));

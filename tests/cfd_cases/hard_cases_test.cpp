@@ -1,4 +1,4 @@
-// Numerical stability on the hard cases of issue 7 (slow, real OpenFOAM):
+// Numerical stability on hard cases (slow, real OpenFOAM):
 // a Mach 8 wedge, the Apollo capsule at Mach 5, and a strongly skewed band.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The hard cases on small bodies: each finishes, with no overlaps,
+// Hard cases on small bodies: each finishes, with no overlaps,
 // and still shows the physics it is about.
 #include <gtest/gtest.h>
 

@@ -22,7 +22,7 @@ constexpr double kBandSizeTolerance = 0.35;
 constexpr double kUniformSpread = 2.0;
 // The mesher's count against the size field's integral sum(dA / h^2).
 constexpr double kEstimateLow = 0.6, kEstimateHigh = 1.6;
-constexpr double kTargetTolerance = 0.10;  // the 10%
+constexpr double kTargetTolerance = 0.10;  // meshgen's stated target-count tolerance
 const char* const kCases[] = {"wedge_M3_10", "wedge_M4_15", "wedge_M5_20", "disc_M4", "apollo_M5"};
 
 nlohmann::json read_summary(const std::string& dir) {

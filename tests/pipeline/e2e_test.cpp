@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kAngleTolDeg = 1.0;  // issue: clustered shock angle within 1 deg of theory
+constexpr double kAngleTolDeg = 1.0;  // a clustered grid's CFD shock within 1 deg of theta-beta-Mach
 const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 

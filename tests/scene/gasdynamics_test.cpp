@@ -1,4 +1,4 @@
-// Reference gas dynamics against tabulated values (NACA 1135 / the figures).
+// Reference gas dynamics against tabulated values (NACA 1135 and the verification card's figures).
 #include <gtest/gtest.h>
 
 #include <cmath>

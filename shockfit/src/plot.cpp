@@ -20,6 +20,10 @@ namespace shockfit {
 namespace fs = std::filesystem;
 
 namespace {
+// The joint shock ("volume_fraction+v") is located on two fields; the
+// pictures draw the first, the density-like one.
+std::string drawn_field(const std::string& located_on) { return located_on.substr(0, located_on.find('+')); }
+
 
 constexpr int kPixelsWide = 1100;
 constexpr int kProfileWide = 900, kProfileHigh = 600;
@@ -52,7 +56,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
   const fs::path tmp1 = dir / (tag + "_shock.png"), tmp2 = dir / (tag + "_profile.png");
   {
     std::ofstream o(f_field);
-    const auto& f = lat.field(r.field);
+    const auto& f = lat.field(drawn_field(r.field));
     for (int j = 0; j < lat.ny; ++j) {
       for (int i = 0; i < lat.nx; ++i) o << num(lat.xc(i)) << ' ' << num(lat.yc(j)) << ' ' << num(f[lat.index(i, j)]) << '\n';
       o << '\n';
@@ -92,7 +96,7 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
   double shock_t = 0.0;
   if (have_profile) {
     const StationFit& sf = r.stations[static_cast<std::size_t>(r.plot_station)];
-    const Profile prof = sample_profile(lat, r.field, d, sf.surface, sf.normal, s.shockfit.min_samples);
+    const Profile prof = sample_profile(lat, drawn_field(r.field), d, sf.surface, sf.normal, s.shockfit.min_samples);
     const TwoLineOptions opt = two_line_options(prof, s.shockfit);
     const TwoLineFit fit = fit_two_lines(prof.t, prof.f, opt);
     std::ofstream o(f_prof);

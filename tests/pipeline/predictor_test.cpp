@@ -1,0 +1,104 @@
+// Shock predictors behind the registry: the correlation (fast, exact on
+// attached wedges), the coarse CFD run (real gmsh and OpenFOAM, slow), and
+// `pipeline predict`'s bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "meshgen/mesh.hpp"
+#include "pipeline/predictor.hpp"
+#include "pipeline/run.hpp"
+#include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
+#include "scene/io.hpp"
+#include "scene/scene.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr double kDeg = std::numbers::pi / 180.0;
+const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
+const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
+
+fs::path fresh(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("shockgrain_predictor_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+int run_cli(const std::string& args) {
+  const int rc = std::system((kPipeline + " " + args + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+}  // namespace
+
+TEST(Predictor, RegistryNamesEveryPredictorAndRefusesUnknownOnes) {
+  for (const auto& n : pipeline::predictor_names()) EXPECT_EQ(pipeline::make_predictor(n)->name(), n);
+  try {
+    (void)pipeline::make_predictor("hessian");
+    FAIL() << "unknown predictor accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("granular, correlation, coarse_cfd"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Predictor, CorrelationIsTheExactObliqueShockOnAnAttachedWedge) {
+  const auto s = scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
+  const auto dir = fresh("corr_wedge");
+  const auto p = pipeline::predict_shock(s, "correlation", dir.string(), 1);
+  ASSERT_EQ(p.kind, pipeline::ShockKind::attached);
+  const double beta = *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4);
+  EXPECT_NEAR(p.shock_angle_deg, beta / kDeg, 1e-9);
+  ASSERT_GE(p.curve.size(), 2u);
+  for (const auto& q : p.curve) EXPECT_NEAR(q.y, q.x * std::tan(beta), 1e-9);
+  // meshgen reads what the predictor wrote, every point accepted.
+  const auto req = meshgen::request_from_shock_csv(p.shock_csv);
+  EXPECT_EQ(req.shock_curve.size(), p.curve.size());
+  EXPECT_LT(p.cpu_seconds, 1.0);
+}
+
+TEST(Predictor, CorrelationIsBilligsShockOnADisc) {
+  const auto s = scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
+  const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_disc").string(), 1);
+  ASSERT_EQ(p.kind, pipeline::ShockKind::detached);
+  // Standoff in body lengths (radii): Billig's 0.386 exp(4.67/M^2).
+  EXPECT_NEAR(p.standoff, scene::billig_standoff_cylinder(4.0), 1e-12);
+  // The vertex stands that far ahead of the nose, on the axis.
+  EXPECT_NEAR(p.curve.front().x, -0.5 - 0.5 * scene::billig_standoff_cylinder(4.0), 1e-9);
+  EXPECT_NEAR(p.curve.front().y, 0.0, 1e-12);
+  // The shape bends downstream, away from the axis.
+  EXPECT_GT(p.curve.back().x, p.curve.front().x);
+  EXPECT_GT(p.curve.back().y, p.curve.front().y);
+}
+
+TEST(Predictor, CorrelationOnApolloStatesItsApproximation) {
+  const auto s = scene::parse_scene("name: a\nbody: {kind: apollo, diameter: 1}\nfreestream: {mach: 5}\n");
+  const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_apollo").string(), 1);
+  ASSERT_EQ(p.kind, pipeline::ShockKind::detached);
+  EXPECT_NE(p.details.value("correlation", "").find("approximation"), std::string::npos) << p.details.dump();
+  EXPECT_GT(p.standoff_ci, 0.2 * p.standoff) << "an approximate correlation must carry a wide band";
+}
+
+TEST(Predictor, PredictCommandRefusesBadInput) {
+  const auto out = fresh("cli_bad");
+  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor nonsense --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("predict /nonexistent.yaml --predictor correlation --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --out " + out.string()), 2) << "--predictor is required";
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+TEST(Predictor, PredictCommandWritesTheContractKeys) {
+  const auto out = fresh("cli_ok");
+  ASSERT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor correlation --out " + out.string()), 0);
+  const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
+  for (const char* k : {"predictor", "shock", "shock_angle_deg", "shock_angle_ci_deg", "cpu_seconds", "reference"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_NEAR(j["reference"]["error"].get<double>(), 0.0, 1e-9);
+  EXPECT_TRUE(fs::exists(out / "shock.csv"));
+}
+

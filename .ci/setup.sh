@@ -16,6 +16,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin    # replicas as MPI ranks; parallel OpenFOAM runs
   gnuplot-nox                   # PNG figures
+  python3-vtk9                  # interop test: outputs read by VTK's own readers (what ParaView uses)
 )
 
 missing=()

@@ -85,7 +85,11 @@ int main(int argc, char** argv) {
         ->add_option("--refine", co.refinements,
                      "runs that bisect the bracketing e interval after the sweep")
         ->check(CLI::NonNegativeNumber);
-    calib->add_option("--out", co.out_dir, "output directory")->required();
+    std::string from_points;
+    calib->add_option("--from-points", from_points,
+                      "fit from measured crossings instead of running (pipeline parametric's "
+                      "parametric_calibration.json); --out is then not needed");
+    calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,
                       "markdown tables to write (default: OUT/calibration.md)");
@@ -163,6 +167,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (calib->parsed()) {
+      if (!from_points.empty()) {
+        std::cout << pipeline::calibrate_from_points(from_points, co.table_path).dump(2) << "\n";
+        return 0;
+      }
+      if (co.out_dir.empty()) throw scene::InputError("calibrate: --out is required (unless --from-points)");
       co.verify = !no_verify;
       const auto r = pipeline::run_calibration(co);
       std::cout << r.dump(2) << "\n";

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include "pipeline/calibration_report.hpp"
+#include "pipeline/studies.hpp"
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -180,4 +183,28 @@ TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
   EXPECT_EQ(s["case_studies"]["n"], 1);  // the in-sample case study does not count
   EXPECT_NEAR(s["case_studies"]["max_abs_deg"].get<double>(), 1.0, 1e-12);
   EXPECT_NEAR(s["residual_sd_restitution"].get<double>(), 0.002, 1e-15);
+}
+
+// Training on measured crossings (pipeline parametric's JSON): the fit
+// recovers e = c0 + c1/M^2 from exact points and never trains on a case study.
+TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
+  const auto dir = std::filesystem::temp_directory_path() / "calib_from_points";
+  std::filesystem::create_directories(dir);
+  nlohmann::json j;
+  j["crossings"] = nlohmann::json::array();
+  for (const double m : {2.0, 2.5, 3.5, 4.5, 6.0})
+    for (const double a : {8.0, 14.0})
+      j["crossings"].push_back({{"mach", m}, {"angle_deg", a}, {"restitution", 0.95 + 0.2 / (m * m)},
+                                {"restitution_ci", 0.002}});
+  // A case study with a wild e: it must not enter the fit.
+  j["crossings"].push_back({{"mach", 3.0}, {"angle_deg", 10.0}, {"restitution", 0.5}, {"restitution_ci", 0.002}});
+  scene::write_file_atomic((dir / "points.json").string(), j.dump());
+  const auto r = pipeline::calibrate_from_points((dir / "points.json").string(), (dir / "table.yaml").string());
+  EXPECT_EQ(r["points"].get<int>(), 10);
+  EXPECT_EQ(r["case_studies_left_out"].get<int>(), 1);
+  const auto t = pipeline::read_calibration((dir / "table.yaml").string());
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4.0, 12.0), 0.95 + 0.2 / 16.0, 1e-9);
+  scene::write_file_atomic((dir / "bad.json").string(), "{\"crossings\": 3}");
+  EXPECT_THROW(pipeline::calibrate_from_points((dir / "bad.json").string(), ""), scene::InputError);
+  EXPECT_THROW(pipeline::calibrate_from_points((dir / "missing.json").string(), ""), scene::InputError);
 }

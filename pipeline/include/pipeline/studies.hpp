@@ -50,6 +50,10 @@ struct CalibrateOptions {
   bool verify = true;
 };
 nlohmann::json run_calibration(const CalibrateOptions& o);
+// The same fit from crossings measured elsewhere (`crossings` of pipeline
+// parametric's parametric_calibration.json), no granular run; the case
+// studies are left out. Writes the table (default: the built-in one).
+nlohmann::json calibrate_from_points(const std::string& points_path, const std::string& table_path);
 
 struct StudiesOptions {
   std::string out_dir;

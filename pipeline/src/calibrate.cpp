@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "json_fields.hpp"
 #include "pipeline/calibration.hpp"
 #include "pipeline/calibration_report.hpp"
 #include "pipeline/calibration_training.hpp"
@@ -44,10 +45,6 @@ constexpr double kRestitutionStep = 1e-6;
 
 double rounded_restitution(double e) {
   return std::min(1.0, std::round(e / kRestitutionStep) * kRestitutionStep);
-}
-
-double number_or_nan(const nlohmann::json& r, const char* key) {
-  return r.contains(key) && r[key].is_number() ? r[key].get<double>() : kNaN;
 }
 
 double gas_angle_deg(const scene::Scene& s, const std::string& origin) {

@@ -6,6 +6,7 @@
 
 #include "cfd/run_case.hpp"
 #include "meshgen/mesh.hpp"
+#include "json_fields.hpp"
 #include "pipeline/error_measures.hpp"
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
@@ -20,15 +21,6 @@ namespace pipeline {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double number_or_nan(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
-}
-
-void check_interrupt(const std::string& where) {
-  if (scene::interrupted())
-    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
-}
 
 bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
 
@@ -58,6 +50,11 @@ double shock_ci(const shockfit::ShockResult& r) {
 }
 
 }  // namespace
+
+void check_interrupt(const std::string& where) {
+  if (scene::interrupted())
+    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
+}
 
 std::string level_name(const std::string& family, double level) {
   char buf[96];

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "json_fields.hpp"
 #include "pipeline/plot.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/run.hpp"
@@ -24,24 +25,6 @@ namespace fs = std::filesystem;
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-std::string fmt(double v, int prec = 3) {
-  if (!std::isfinite(v)) return "n/a";
-  std::ostringstream os;
-  os.precision(prec);
-  os << v;
-  return os.str();
-}
-
-double number(const nlohmann::json& j, const char* k) {
-  return j.is_object() && j.contains(k) && j[k].is_number() ? j[k].get<double>() : std::nan("");
-}
-
-std::string interval(const nlohmann::json& i) {
-  const double v = number(i, "value");
-  if (!std::isfinite(v)) return "n/a";
-  const std::string hi = i.contains("ci_high") && i["ci_high"].is_null() ? "inf" : fmt(number(i, "ci_high"));
-  return fmt(v) + "x (" + fmt(number(i, "ci_low")) + "-" + hi + ")";
-}
 
 // The shock the predictor is scored against: exact on attached wedges; for
 // discs Billig's standoff, an empirical comparison; none otherwise.
@@ -148,16 +131,16 @@ nlohmann::json run_league(const LeagueOptions& o) {
       }
       const auto& pr = sum["prediction"];
       const bool angle = sum["reference"].value("quantity", "") == "shock_angle_deg";
-      const std::string value = angle ? fmt(number(pr, "shock_angle_deg"), 4) + " deg"
-                                      : fmt(number(pr, "standoff"), 4) + " L";
-      const std::string err = angle ? fmt(number(pr, "error_deg"), 3) + " deg"
+      const std::string value = angle ? format_number(number_or_nan(pr, "shock_angle_deg"), 4) + " deg"
+                                      : format_number(number_or_nan(pr, "standoff"), 4) + " L";
+      const std::string err = angle ? format_number(number_or_nan(pr, "error_deg"), 3) + " deg"
                                     : (sum["reference"].value("source", "").find("Billig") != std::string::npos
-                                           ? fmt(100 * number(pr, "relative_error"), 3) + "% (Billig)"
+                                           ? format_number(100 * number_or_nan(pr, "relative_error"), 3) + "% (Billig)"
                                            : "n/a");
-      md << "| " << name << " | " << fmt(number(pr, "cpu_seconds"), 3) << " | " << value << " | " << err << " | "
-         << interval(sum["speedup_cfd"]) << " | " << interval(sum["speedup_total"]) << " | "
+      md << "| " << name << " | " << format_number(number_or_nan(pr, "cpu_seconds"), 3) << " | " << value << " | " << err << " | "
+         << speedup_text(sum["speedup_cfd"]) << " | " << speedup_text(sum["speedup_total"]) << " | "
          << sum.value("verdict", "n/a") << " |\n";
-      const double st = number(sum["speedup_total"], "value");
+      const double st = number_or_nan(sum["speedup_total"], "value");
       if (std::isfinite(st) && st > best_speedup) {
         best_speedup = st;
         best = name;
@@ -166,11 +149,11 @@ nlohmann::json run_league(const LeagueOptions& o) {
       c.title = "clustered (" + name + ")";
       u.title = "uniform";
       for (const auto& r : sum["runs"]) {
-        const double e = number(r, "primary_error"), cpu = number(r, "cpu_seconds"), mesh = number(r, "mesh_cpu_seconds");
+        const double e = number_or_nan(r, "primary_error"), cpu = number_or_nan(r, "cpu_seconds"), mesh = number_or_nan(r, "mesh_cpu_seconds");
         if (!(e > 0) || !(cpu > 0)) continue;
         const bool clustered = r.value("family", "") != "uniform";
         Series& ser = clustered ? c : u;
-        ser.x.push_back(cpu + (std::isfinite(mesh) ? mesh : 0.0) + (clustered ? number(pr, "cpu_seconds") : 0.0));
+        ser.x.push_back(cpu + (std::isfinite(mesh) ? mesh : 0.0) + (clustered ? number_or_nan(pr, "cpu_seconds") : 0.0));
         ser.y.push_back(e);
       }
       fig.series.push_back(c);
@@ -186,7 +169,7 @@ nlohmann::json run_league(const LeagueOptions& o) {
     if (best.empty())
       md << "No predictor gave a speedup that could be fitted.\n\n";
     else
-      md << "Highest total-CPU speedup: **" << best << "** (" << fmt(best_speedup) << "x); see the verdict column "
+      md << "Highest total-CPU speedup: **" << best << "** (" << format_number(best_speedup) << "x); see the verdict column "
          << "for whether it is distinguishable from 1. Figure: `" << png << "`.\n\n";
     all[s.name] = row;
   }

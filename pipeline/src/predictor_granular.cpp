@@ -4,15 +4,10 @@
 
 #include <cmath>
 
+#include "json_fields.hpp"
 #include "pipeline/run.hpp"
 
 namespace pipeline {
-
-namespace {
-double number_or_nan(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
-}
-}  // namespace
 
 Prediction GranularPredictor::predict(const PredictContext& cx) const {
   const nlohmann::json r = run_prediction(cx.scene, cx.out_dir, cx.np, cx.force);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cfd/run_case.hpp"
+#include "json_fields.hpp"
 #include "pipeline/figures.hpp"
 #include "pipeline/plot.hpp"
 #include "scene/body.hpp"
@@ -51,17 +52,10 @@ nlohmann::json run_object(const GridRun& r, const Reference& ref) {
   return j;
 }
 
-std::string fmt(double v, int prec = 3) {
-  if (!std::isfinite(v)) return "n/a";
-  std::ostringstream os;
-  os.precision(prec);
-  os << v;
-  return os.str();
-}
 
 std::string interval_text(const Interval& i) {
   if (!std::isfinite(i.value)) return "n/a";
-  return fmt(i.value, 3) + "x (95%: " + fmt(i.ci_low, 3) + "-" + (std::isinf(i.ci_high) ? "inf" : fmt(i.ci_high, 3)) +
+  return format_number(i.value, 3) + "x (95%: " + format_number(i.ci_low, 3) + "-" + (std::isinf(i.ci_high) ? "inf" : format_number(i.ci_high, 3)) +
          ")";
 }
 
@@ -105,7 +99,7 @@ void add_fit(PlotSpec& p, const LogLogFit& f, const std::vector<double>& costs, 
   constexpr int kPoints = 20;
   constexpr double kBandSd = 2.0;
   Series mid, up, down;
-  mid.title = title + " fit (slope " + fmt(f.b, 2) + ")";
+  mid.title = title + " fit (slope " + format_number(f.b, 2) + ")";
   up.title = title + " fit +-2 s";
   down.title = "";
   mid.style = "lines lw 2";
@@ -253,10 +247,10 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
   md << "Primary error: **" << v.primary.name << "** against the " << v.primary.reference << " — "
      << v.primary.why << ".\n\n";
   if (std::isfinite(v.speedup_total.value)) {
-    md << "At the clustered family's finest error (" << fmt(v.target_error, 3)
+    md << "At the clustered family's finest error (" << format_number(v.target_error, 3)
        << "), reading each family's log-log fit of error against CPU time:\n\n"
        << "- CFD CPU time: uniform / clustered = **" << interval_text(v.speedup_cfd) << "** — " << v.verdict_cfd
-       << ";\n- total CPU time (predictor " << fmt(v.predictor_cpu, 3)
+       << ";\n- total CPU time (predictor " << format_number(v.predictor_cpu, 3)
        << " s, meshing and CFD): **" << interval_text(v.speedup_total) << "** — **" << v.verdict << "**.\n\n";
     md << "\"not distinguishable\" means the 95% interval contains 1.";
     if (!v.note.empty()) md << " Note: " << v.note << ".";
@@ -269,11 +263,11 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
   md << "\n";
   const auto& c = in.comparison;
   if (std::isfinite(c.speedup_cfd))
-    md << "Secondary (the shock angle or standoff, wall seconds, interpolated): " << fmt(c.speedup_cfd, 3)
+    md << "Secondary (the shock angle or standoff, wall seconds, interpolated): " << format_number(c.speedup_cfd, 3)
        << "x in CFD wall time.\n\n";
   else if (std::isfinite(c.speedup_bound))
     md << "Secondary (the shock angle or standoff, wall seconds): no uniform grid reached the clustered grid's "
-          "error; against the finest uniform grid, at least " << fmt(c.speedup_bound, 3) << "x in CFD wall time.\n\n";
+          "error; against the finest uniform grid, at least " << format_number(c.speedup_bound, 3) << "x in CFD wall time.\n\n";
 }
 
 void runs_table(std::ostringstream& md, const ReportInputs& in) {
@@ -282,16 +276,16 @@ void runs_table(std::ostringstream& md, const ReportInputs& in) {
   md << "## Runs\n\n| family | h / h_min | cells | CFD CPU s | CFD wall s | mesh CPU s | steps | us/cell-step | "
         "steady | " << in.verdict.primary.name << " | "
      << (angle ? "angle (deg)" : "standoff") << " | error | "
-     << (angle ? "p2/p1 (exact " + fmt(in.reference.pressure_ratio, 4) + ")" : "p0/p_inf") << " |\n"
+     << (angle ? "p2/p1 (exact " + format_number(in.reference.pressure_ratio, 4) + ")" : "p0/p_inf") << " |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto* fam : {&c.uniform, &c.clustered})
     for (const auto& r : *fam)
-      md << "| " << r.family << " | " << r.level << " | " << r.cells << " | " << fmt(r.cfd_cpu_seconds) << " | "
-         << fmt(r.cfd_wall_seconds) << " | " << fmt(r.mesh_cpu_seconds) << " | " << r.steps << " | "
-         << fmt(r.cpu_us_per_cell_step(), 2) << " | " << (r.steady ? "yes" : "**no**") << " | "
-         << fmt(r.primary_error, 3) << " ± " << fmt(r.primary_error_ci, 2) << " | " << fmt(r.value, 4) << " ± "
-         << fmt(r.value_ci, 2) << " | " << fmt(r.error) << " | "
-         << (angle ? fmt(r.wall_pressure_ratio, 4) : fmt(r.stagnation_pressure_ratio, 4)) << " |\n";
+      md << "| " << r.family << " | " << r.level << " | " << r.cells << " | " << format_number(r.cfd_cpu_seconds) << " | "
+         << format_number(r.cfd_wall_seconds) << " | " << format_number(r.mesh_cpu_seconds) << " | " << r.steps << " | "
+         << format_number(r.cpu_us_per_cell_step(), 2) << " | " << (r.steady ? "yes" : "**no**") << " | "
+         << format_number(r.primary_error, 3) << " ± " << format_number(r.primary_error_ci, 2) << " | " << format_number(r.value, 4) << " ± "
+         << format_number(r.value_ci, 2) << " | " << format_number(r.error) << " | "
+         << (angle ? format_number(r.wall_pressure_ratio, 4) : format_number(r.stagnation_pressure_ratio, 4)) << " |\n";
   md << "\n";
 }
 
@@ -300,8 +294,8 @@ void convergence_section(std::ostringstream& md, const nlohmann::json& g) {
   if (!g.is_object()) return;
   md << "## Grid convergence (independent reference grid)\n\n";
   const auto& ref = g["reference_run"];
-  md << "Reference grid: uniform, h = " << fmt(ref.value("level", kNaN), 3) << " h_min, "
-     << ref.value("cells", 0L) << " cells, CPU " << fmt(ref.value("cpu_seconds", kNaN), 4) << " s, steady "
+  md << "Reference grid: uniform, h = " << format_number(ref.value("level", kNaN), 3) << " h_min, "
+     << ref.value("cells", 0L) << " cells, CPU " << format_number(ref.value("cpu_seconds", kNaN), 4) << " s, steady "
      << (ref.value("steady_state_reached", false) ? "yes" : "**no**") << " (a member of neither family).\n\n";
   if (g.contains("note")) {
     md << g.value("note", "") << ".\n\n";
@@ -311,8 +305,8 @@ void convergence_section(std::ostringstream& md, const nlohmann::json& g) {
   for (const char* q : {"standoff", "drag_coefficient", "stagnation_pressure_ratio"}) {
     const auto& c = g[q];
     auto num = [&](const char* k) { return c.contains(k) && c[k].is_number() ? c[k].get<double>() : kNaN; };
-    md << "| " << q << " | " << fmt(num("observed_order"), 3) << " | " << fmt(num("extrapolated"), 5) << " | "
-       << fmt(num("gci_fine"), 3) << " | " << c.value("note", "") << " |\n";
+    md << "| " << q << " | " << format_number(num("observed_order"), 3) << " | " << format_number(num("extrapolated"), 5) << " | "
+       << format_number(num("gci_fine"), 3) << " | " << c.value("note", "") << " |\n";
   }
   md << "\nRichardson triple: the reference grid and the uniform grids 2x and 4x coarser (Roache; safety factor "
         "1.25). The stagnation pressure's exact value is Rayleigh's; its row checks the extrapolation.\n\n";
@@ -400,15 +394,15 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
         "meshing tools included; wall seconds beside them), one run per grid; the intervals come from the "
         "families' fits. Shock reference: "
      << ref.source << " ("
-     << (angle ? "shock angle " + fmt(ref.value, 4) + " deg" : "standoff " + fmt(ref.value, 4) + " body lengths")
+     << (angle ? "shock angle " + format_number(ref.value, 4) + " deg" : "standoff " + format_number(ref.value, 4) + " body lengths")
      << ").\n\n";
   if (!in.calibration_note.empty()) md << "Calibration: " << in.calibration_note << ".\n\n";
   verdict_section(md, in);
   const auto& g = summary["prediction"];
   md << "Prediction (" << in.prediction.predictor << "): shock " << g.value("shock", "none") << ", ";
-  if (angle) md << "angle " << fmt(g.value("shock_angle_deg", kNaN), 4) << " deg (error " << fmt(g.value("error_deg", kNaN), 3) << " deg)";
-  else md << "standoff " << fmt(g.value("standoff", kNaN), 4) << " (relative error " << fmt(g.value("relative_error", kNaN), 3) << ")";
-  md << ", CPU " << fmt(g.value("cpu_seconds", kNaN), 3) << " s (wall " << fmt(g.value("wall_seconds", kNaN), 3)
+  if (angle) md << "angle " << format_number(g.value("shock_angle_deg", kNaN), 4) << " deg (error " << format_number(g.value("error_deg", kNaN), 3) << " deg)";
+  else md << "standoff " << format_number(g.value("standoff", kNaN), 4) << " (relative error " << format_number(g.value("relative_error", kNaN), 3) << ")";
+  md << ", CPU " << format_number(g.value("cpu_seconds", kNaN), 3) << " s (wall " << format_number(g.value("wall_seconds", kNaN), 3)
      << " s).";
   if (angle && std::abs(g.value("error_deg", 0.0)) > 1.0)
     md << " **The predicted shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
@@ -444,7 +438,7 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
   md << "Errors are against the references named above; ± on the primary error is its change over the last write "
         "interval (the steady state's flicker), ± on the shock is the 95% interval of the shock located on the CFD "
         "solution.\n\n";
-  md << "Total pipeline wall time: " << fmt(in.total_seconds, 4) << " s (cached stages cost nothing).\n";
+  md << "Total pipeline wall time: " << format_number(in.total_seconds, 4) << " s (cached stages cost nothing).\n";
   scene::write_file_atomic(dir + "/" + file_name, md.str());
 }
 

@@ -12,6 +12,7 @@
 #include "pipeline/compare.hpp"
 #include "pipeline/grid_convergence.hpp"
 #include "pipeline/grid_runs.hpp"
+#include "json_fields.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/stage_cache.hpp"
@@ -44,14 +45,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void check_interrupt(const std::string& where) {
-  if (scene::interrupted())
-    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
-}
-
-double number_or_nan(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
-}
 
 Reference reference_for(const scene::Scene& s) {
   Reference r;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "json_fields.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/cli.hpp"
@@ -23,20 +24,7 @@ std::vector<std::string> case_study_scenes() {
 }
 
 namespace {
-std::string fmt(const nlohmann::json& j, const char* k, int prec = 4) {
-  if (!j.is_object() || !j.contains(k) || !j[k].is_number() || !std::isfinite(j[k].get<double>())) return "n/a";
-  std::ostringstream os;
-  os.precision(prec);
-  os << j[k].get<double>();
-  return os.str();
-}
-// "3.2x (2.1-4.9)" from a {value, ci_low, ci_high} object.
-std::string interval(const nlohmann::json& i) {
-  const std::string v = fmt(i, "value", 3);
-  if (v == "n/a") return v;
-  const std::string hi = i.contains("ci_high") && i["ci_high"].is_null() ? "inf" : fmt(i, "ci_high", 3);
-  return v + "x (" + fmt(i, "ci_low", 3) + "-" + hi + ")";
-}
+std::string fmt(const nlohmann::json& j, const char* k, int prec = 4) { return format_number(number_or_nan(j, k), prec); }
 
 // Targets: the clustered family at least this much faster than the uniform
 // one at equal primary error, in CFD CPU time (with the interval's lower end
@@ -44,9 +32,6 @@ std::string interval(const nlohmann::json& i) {
 constexpr double kTargetCfdSpeedup = 4.0;
 constexpr double kTargetTotalSpeedup = 2.0;
 
-double number(const nlohmann::json& j, const char* k) {
-  return j.is_object() && j.contains(k) && j[k].is_number() ? j[k].get<double>() : std::nan("");
-}
 
 }  // namespace
 
@@ -88,12 +73,12 @@ nlohmann::json run_studies(const StudiesOptions& o) {
     md << "| " << s.name << " | " << sum.value("primary_error", "n/a") << " ("
        << details.value("primary_error_reference", "") << ") | " << fmt(sum["granular"], q) << " ("
        << fmt(sum["granular"], "restitution", 6) << ") | " << fmt(c, "cells", 6) << ", " << fmt(c, "cpu_seconds", 3)
-       << ", " << fmt(c, "primary_error", 3) << " | " << interval(sum["speedup_cfd"]) << " | "
-       << interval(sum["speedup_total"]) << " | " << sum.value("verdict", "n/a")
+       << ", " << fmt(c, "primary_error", 3) << " | " << speedup_text(sum["speedup_cfd"]) << " | "
+       << speedup_text(sum["speedup_total"]) << " | " << sum.value("verdict", "n/a")
        << (details.value("extrapolated", false) ? " (extrapolated)" : "") << " |\n";
-    if (number(sum["speedup_cfd"], "value") >= kTargetCfdSpeedup && number(sum["speedup_cfd"], "ci_low") > 1.0)
+    if (number_or_nan(sum["speedup_cfd"], "value") >= kTargetCfdSpeedup && number_or_nan(sum["speedup_cfd"], "ci_low") > 1.0)
       met_cfd.push_back(s.name);
-    if (number(sum["speedup_total"], "value") >= kTargetTotalSpeedup) met_total.push_back(s.name);
+    if (number_or_nan(sum["speedup_total"], "value") >= kTargetTotalSpeedup) met_total.push_back(s.name);
   }
   const auto list = [](const std::vector<std::string>& names) {
     std::string out;

@@ -55,6 +55,9 @@ class GridRunner {
 
 std::string level_name(const std::string& family, double level);
 
+// RunError naming the step when Ctrl-C was pressed: finished stages stay cached.
+void check_interrupt(const std::string& where);
+
 // Level of the independent reference grid: pipeline.reference_level, else
 // the coarsest level finer than every family member whose 2x and 4x coarser
 // levels are both family levels (a Richardson triple at ratio 2: 0.7 for the

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -16,6 +15,7 @@
 #include "gmsh_mesher.hpp"
 #include "meshgen/fluid_region.hpp"
 #include "meshgen/mesh.hpp"
+#include "scene/cpu_clock.hpp"
 #include "meshgen/size_field.hpp"
 #include "plot.hpp"
 #include "scene/errors.hpp"
@@ -55,14 +55,6 @@ constexpr double kMinCellSize = 1e-5;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
 constexpr double kZoomCells = 12.0;
 constexpr double kZoomBands = 3.0;
-
-// CPU seconds of waited-for child processes (the gmsh child).
-double children_cpu_seconds() {
-  rusage u{};
-  ::getrusage(RUSAGE_CHILDREN, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -294,12 +286,12 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
     check_estimate(where, estimate * calibration, plan.uniform ? sizing.uniform_h : sizing.params.h_min, flow_area);
     stop_if_interrupted("before meshing");
     const auto t0 = std::chrono::steady_clock::now();
-    const double cpu_before = children_cpu_seconds();
+    const double cpu_before = scene::children_cpu_seconds();
     mesh = mesh_with_gmsh_in_child(region, field, job, (stage / "plane_mesh.bin").string());
     gmsh_seconds = seconds_since(t0);
     // The child's CPU time: what gmsh itself cost, whatever the load; every
     // attempt at a target cell count costs.
-    gmsh_cpu += children_cpu_seconds() - cpu_before;
+    gmsh_cpu += scene::children_cpu_seconds() - cpu_before;
     if (!plan.target) break;
     const double n = static_cast<double>(mesh.volume_cells);
     const double miss = std::abs(n / *plan.target - 1.0);

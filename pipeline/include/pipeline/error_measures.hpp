@@ -44,6 +44,11 @@ double area_behind_line(const std::vector<scene::Vec2>& polygon, scene::Vec2 nor
 // over sum |A_c|, divided by `scale`.
 double piecewise_l1(const cfd::Mesh2D& mesh, const std::vector<double>& field, double beta, double ahead,
                     double behind, double scale);
+// The same with each cell's share behind the line computed beforehand
+// (behind_fractions), for several fields or times on one mesh.
+std::vector<double> behind_fractions(const cfd::Mesh2D& mesh, double beta);
+double piecewise_l1(const cfd::Mesh2D& mesh, const std::vector<double>& field, const std::vector<double>& behind_fraction,
+                    double ahead, double behind, double scale);
 
 // All measures that apply to the scene, from the case's last two written times.
 CaseErrors measure_case_errors(const scene::Scene& s, const std::string& case_dir);

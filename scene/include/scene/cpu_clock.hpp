@@ -7,15 +7,17 @@
 
 namespace scene {
 
-inline double cpu_seconds_now() {
-  auto sum = [](int who) {
-    rusage u{};
-    getrusage(who, &u);
-    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-           1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  };
-  return sum(RUSAGE_SELF) + sum(RUSAGE_CHILDREN);
+inline double rusage_cpu_seconds(int who) {
+  rusage u{};
+  getrusage(who, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
+
+// Waited-for children only (a meshing child, a solver).
+inline double children_cpu_seconds() { return rusage_cpu_seconds(RUSAGE_CHILDREN); }
+
+inline double cpu_seconds_now() { return rusage_cpu_seconds(RUSAGE_SELF) + children_cpu_seconds(); }
 
 // CPU seconds since construction; valid for work done in sequence (a child
 // counts once it has been waited for).

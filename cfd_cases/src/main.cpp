@@ -14,6 +14,7 @@
 #include "scene/cli.hpp"
 #include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
+#include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 #include "scene/staging.hpp"
@@ -114,8 +115,11 @@ int main(int argc, char** argv) {
       throw scene::RunError(replace_all(e.what(), stage, kept) + " (" + out + " is unchanged)");
     }
     staged.commit(scene::Leftovers::discard);
+    // The case was written in the staging folder: its summary must name
+    // where the case now lives, or a reader follows a path that is gone.
     r.case_dir = out;
     r.history_csv = out + "/history.csv";
+    scene::write_json_atomic(out + "/summary.json", r.summary());
     std::cout << r.summary().dump(2) << "\n";
     return 0;
   });

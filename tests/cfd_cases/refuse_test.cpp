@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -63,6 +64,22 @@ bool has_temporaries(const std::string& dir) {
   return false;
 }
 
+// True once a staging case beside --out holds a written time other than 0.
+bool wait_for_written_time(const std::string& dir, std::chrono::seconds limit) {
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < until) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().filename().string().find(".staging-") == std::string::npos) continue;
+      std::error_code ec;
+      for (const auto& t : fs::directory_iterator(e.path(), ec))
+        if (t.is_directory() && t.path().filename() != "0" && std::isdigit(static_cast<unsigned char>(t.path().filename().string()[0])))
+          return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
 constexpr const char* kWedge =
     "body: {kind: wedge, angle_deg: 10, length: 1.0}\nfreestream: {mach: 3.0}\n";
 
@@ -93,7 +110,9 @@ TEST(Refuse, OutEqualToOrAroundTheMeshIsRefused) {
 TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
   const std::string dir = fresh("interrupt");
   const std::string s =
-      write_scene(dir, std::string(kWedge) + "cfd: {end_time: 1000, write_interval: 1}\n");
+      write_scene(dir, std::string(kWedge) +
+                           "cfd: {end_time: 1000, write_interval: 1, steady_tol: 1e-300, "
+                           "force_tol: 1e-300}\n");  // never settles: only the signal ends it
   ASSERT_EQ(cfd("blockmesh " + s + " --cells 2000 --out " + dir + "/mesh").code, 0);
   const std::string out = dir + "/case";
   fs::create_directories(out);
@@ -106,7 +125,8 @@ TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
           out.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::seconds(4));  // the solver is running by then
+  // Interrupt once the solver has written a time, whatever the machine's speed.
+  ASSERT_TRUE(wait_for_written_time(dir, std::chrono::seconds(120)));
   kill(pid, SIGINT);
   int st = 0;
   waitpid(pid, &st, 0);
@@ -116,5 +136,19 @@ TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>()),
             "{\"previous\": true}\n");
   EXPECT_TRUE(fs::exists(out + ".failed"));
+  EXPECT_FALSE(has_temporaries(dir));
+}
+
+TEST(Refuse, FinishedRunSummaryNamesTheFolderItWasMovedTo) {
+  const std::string dir = fresh("finished");
+  const std::string s =
+      write_scene(dir, std::string(kWedge) + "cfd: {end_time: 0.2, write_interval: 0.1}\n");
+  ASSERT_EQ(cfd("blockmesh " + s + " --cells 500 --out " + dir + "/mesh").code, 0);
+  const std::string out = dir + "/case";
+  ASSERT_EQ(cfd("run " + s + " --mesh " + dir + "/mesh --out " + out).code, 0);
+  std::ifstream is(out + "/summary.json");
+  const std::string text((std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"case_dir\": \"" + out + "\""), std::string::npos) << text;
+  EXPECT_EQ(text.find(".staging-"), std::string::npos) << text;
   EXPECT_FALSE(has_temporaries(dir));
 }

@@ -104,7 +104,7 @@ double percentile(std::vector<double> v, double q) {
 // sampling distribution (a t with n - 2 degrees of freedom).
 class FamilyDraw {
  public:
-  FamilyDraw(const std::vector<CostError>& runs) : pts_(samples_of(runs)), sd_(log_error_sd(runs)) {}
+  explicit FamilyDraw(const std::vector<CostError>& runs) : pts_(samples_of(runs)), sd_(log_error_sd(runs)) {}
   bool usable() const { return fit_centred(pts_).ok; }
   double nominal(double le) const {
     const Centred f = fit_centred(pts_);
@@ -152,8 +152,14 @@ LogLogFit fit_log_log(const std::vector<CostError>& runs) {
 
 Interval cost_ratio_at_error(const std::vector<CostError>& slow, const std::vector<CostError>& fast,
                              double target_error, const EqualErrorOptions& o) {
+  const FamilyPair fixed{slow, fast};
+  return cost_ratio_at_error(fixed, [&](std::mt19937_64&) { return fixed; }, target_error, o);
+}
+
+Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sample, double target_error,
+                             const EqualErrorOptions& o) {
   Interval out{kNaN, kNaN, kNaN};
-  const FamilyDraw s(slow), f(fast);
+  const FamilyDraw s(nominal.slow), f(nominal.fast);
   if (!(target_error > 0) || !std::isfinite(target_error) || !s.usable() || !f.usable()) return out;
   const double le = std::log(target_error);
   out.value = std::exp(s.nominal(le) - f.nominal(le));
@@ -162,7 +168,9 @@ Interval cost_ratio_at_error(const std::vector<CostError>& slow, const std::vect
   ratios.reserve(static_cast<std::size_t>(o.draws));
   int undefined = 0;
   for (int k = 0; k < o.draws; ++k) {
-    const double d = s.draw(le, rng) - f.draw(le, rng);
+    const FamilyPair drawn = sample(rng);
+    const FamilyDraw ds(drawn.slow), df(drawn.fast);
+    const double d = ds.draw(le, rng) - df.draw(le, rng);
     if (std::isnan(d)) ++undefined;
     else ratios.push_back(d);
   }

@@ -9,6 +9,7 @@
 #include "pipeline/league.hpp"
 #include "pipeline/parametric.hpp"
 #include "pipeline/predictor.hpp"
+#include "pipeline/rejudge.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -42,6 +43,12 @@ int main(int argc, char** argv) {
     run->add_flag("--force-budget", force_budget, "run even when the estimate exceeds pipeline.budget_cpu_seconds");
     std::string predictor = "granular";
     run->add_option("--predictor", predictor, "shock predictor: granular, correlation, coarse_cfd");
+
+    auto* judge = app.add_subcommand(
+        "verdict", "recompute a finished run's verdict from its recorded grids (RUNDIR/summary.json) with the "
+                   "current method; writes RUNDIR/verdict.json, runs nothing");
+    std::string judge_dir;
+    judge->add_option("rundir", judge_dir, "a `pipeline run` output directory")->required();
 
     auto* predict = app.add_subcommand("predict", "the shock predictor alone: shock.csv, summary.json, shock.png");
     pipeline::PredictOptions po;
@@ -149,6 +156,10 @@ int main(int argc, char** argv) {
       const auto summary = pipeline::run_pipeline(s, o);
       std::cout << summary.dump(2) << "\n";
       std::cout << pipeline::verdict_line(summary) << "\n";
+      return 0;
+    }
+    if (judge->parsed()) {
+      std::cout << pipeline::write_rejudged(judge_dir) << "\n";
       return 0;
     }
     if (predict->parsed()) {

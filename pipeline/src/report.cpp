@@ -124,9 +124,11 @@ void cost_figures(const ReportInputs& in, const std::string& fig) {
   const auto& c = in.comparison;
   const auto& v = in.verdict;
   const std::string ylabel = v.primary.name + " (95% bars)";
-  PlotSpec cfd{"Primary error against CFD CPU time", "CFD CPU seconds to steady state", ylabel, true, true, {}, {}};
-  PlotSpec tot{"Primary error against total CPU time (predictor + meshing + CFD)", "total CPU seconds", ylabel,
-               true, true, {}, {}};
+  const std::string priced = v.priced ? " (priced: cells x steps at this run's fitted rate)" : "";
+  PlotSpec cfd{"Primary error against CFD CPU time", "CFD CPU seconds to steady state" + priced, ylabel, true, true,
+               {}, {}};
+  PlotSpec tot{"Primary error against total CPU time (predictor + meshing + CFD)", "total CPU seconds" + priced,
+               ylabel, true, true, {}, {}};
   for (const auto* fam : {&c.uniform, &c.clustered}) {
     const bool clustered = fam == &c.clustered;
     const std::string title = clustered ? "clustered (" + in.prediction.predictor + ")" : "uniform";
@@ -135,14 +137,16 @@ void cost_figures(const ReportInputs& in, const std::string& fig) {
     std::vector<double> xc, xt;
     for (const auto& r : *fam) {
       if (!(r.primary_error > 0) || !(r.cfd_cpu_seconds > 0)) continue;
-      const double total = r.cfd_cpu_seconds + r.mesh_cpu_seconds + (clustered ? v.predictor_cpu : 0.0);
-      sc.x.push_back(r.cfd_cpu_seconds);
+      const double cfd_cpu = verdict_cfd_cpu(v, r.cells, r.steps, r.cfd_cpu_seconds);
+      const double total = cfd_cpu + verdict_mesh_cpu(v, r.cells, r.steps, r.mesh_cpu_seconds) +
+                           (clustered ? v.predictor_cpu : 0.0);
+      sc.x.push_back(cfd_cpu);
       st.x.push_back(total);
       for (auto* s : {&sc, &st}) {
         s->y.push_back(r.primary_error);
         s->yerr.push_back(std::isfinite(r.primary_error_ci) ? r.primary_error_ci : 0.0);
       }
-      xc.push_back(r.cfd_cpu_seconds);
+      xc.push_back(cfd_cpu);
       xt.push_back(total);
     }
     cfd.series.push_back(sc);
@@ -255,6 +259,17 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
     md << "\"not distinguishable\" means the 95% interval contains 1.";
     if (!v.note.empty()) md << " Note: " << v.note << ".";
     md << "\n\n";
+    if (v.priced) {
+      const WorkPrice& p = v.price;
+      md << "Costs are **priced**: each grid's cells and solver steps (the same on every run) at this run's fitted "
+            "rate, " << format_number(p.per_cell_step * 1e6, 3) << " us per cell-step + "
+         << format_number(p.per_step * 1e3, 3) << " ms per step, meshing " << format_number(p.mesh_base, 3) << " s + "
+         << format_number(p.mesh_per_cell * 1e6, 3) << " us per cell (fitted on " << p.runs
+         << " runs); one timing scatters by " << format_number(100 * p.cfd_log_sd, 2)
+         << "% (log sd) about it, which the interval carries with the predictor's timing. On the measured single "
+            "timings instead: total " << interval_text(v.measured_total) << " — " << verdict_of(v.measured_total)
+         << ".\n\n";
+    }
   } else {
     md << "No verdict: " << (v.note.empty() ? "missing runs" : v.note) << " (see the table).\n\n";
   }

@@ -113,7 +113,7 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids, const P
 std::vector<VerdictRun> verdict_runs(const std::vector<GridRun>& runs) {
   std::vector<VerdictRun> out;
   for (const auto& r : runs)
-    out.push_back({r.family, r.level, r.cells, r.cfd_cpu_seconds, r.mesh_cpu_seconds, r.primary_error,
+    out.push_back({r.family, r.level, r.cells, r.steps, r.cfd_cpu_seconds, r.mesh_cpu_seconds, r.primary_error,
                    r.primary_error_ci, r.steady});
   return out;
 }
@@ -230,15 +230,15 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   step("prediction (" + o.predictor + ")");
   const ShockInput shock{pred.fingerprint, pred.shock_csv, pred.kind != ShockKind::none && pred.curve.size() >= 2};
 
-  // Both families, coarse to fine.
+  // Both families, coarse to fine, interleaved level by level: a change in
+  // the machine's load during the run then falls on both families alike.
   const PrimaryError primary = primary_error_for(s);
   std::vector<GridRun> fam_c, fam_u;
-  for (const double level : levels) fam_u.push_back(grids.run("uniform", level, {}, primary));
-  if (shock.has_shock) {
-    for (const double level : levels)
-      fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
-  } else {
+  if (!shock.has_shock)
     scene::log_line("pipeline: the " + o.predictor + " predictor found no shock; no clustered grids", true);
+  for (const double level : levels) {
+    fam_u.push_back(grids.run("uniform", level, {}, primary));
+    if (shock.has_shock) fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
   }
   const nlohmann::json convergence = reference_study(s, grids, primary, fam_u);
 

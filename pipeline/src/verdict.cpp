@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include "scene/gasdynamics.hpp"
 
@@ -33,11 +34,52 @@ std::vector<VerdictRun> usable_runs(const std::vector<VerdictRun>& runs, FamilyF
   return out;
 }
 
-std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total, double predictor_cpu) {
-  std::vector<CostError> out;
-  for (const auto& r : runs)
-    out.push_back({total ? predictor_cpu + r.mesh_cpu + r.cfd_cpu : r.cfd_cpu, r.error, r.error_ci});
+WorkRun work_of(const VerdictRun& r) { return {r.cells, r.steps, r.cfd_cpu, r.mesh_cpu}; }
+
+std::vector<WorkRun> work_of(const std::vector<VerdictRun>& a, const std::vector<VerdictRun>& b) {
+  std::vector<WorkRun> out;
+  for (const auto* fam : {&a, &b})
+    for (const auto& r : *fam) out.push_back(work_of(r));
   return out;
+}
+
+bool has_work(const std::vector<VerdictRun>& runs) {
+  return std::all_of(runs.begin(), runs.end(), [](const VerdictRun& r) { return r.cells > 0 && r.steps > 0; });
+}
+
+// A family's (cost, error) points: CFD CPU alone, or the total with meshing
+// and the predictor's CPU; priced by `price` when given.
+std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total, double predictor_cpu,
+                             const WorkPrice* price) {
+  std::vector<CostError> out;
+  for (const auto& r : runs) {
+    const WorkRun w = work_of(r);
+    const double cfd = price ? price->cfd(w) : r.cfd_cpu;
+    const double mesh = price ? price->mesh(w) : r.mesh_cpu;
+    out.push_back({total ? predictor_cpu + mesh + cfd : cfd, r.error, r.error_ci});
+  }
+  return out;
+}
+
+// The speedups with the price's and the predictor timing's uncertainty drawn
+// in every Monte Carlo sample.
+void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::vector<VerdictRun>& u) {
+  const std::vector<WorkRun> work = work_of(c, u);
+  const WorkPrice fitted = v.price;
+  const double predictor = v.predictor_cpu;
+  auto sampler = [&](bool total) {
+    return [&, total](std::mt19937_64& rng) {
+      const WorkPrice p = draw_work_price(work, fitted, rng);
+      const WorkPrice& use = p.ok ? p : fitted;
+      std::normal_distribution<double> normal(0.0, 1.0);
+      const double pred = predictor * std::exp(fitted.cfd_log_sd * normal(rng));
+      return FamilyPair{costs(u, total, 0, &use), costs(c, total, pred, &use)};
+    };
+  };
+  v.speedup_cfd = cost_ratio_at_error({costs(u, false, 0, &fitted), costs(c, false, 0, &fitted)}, sampler(false),
+                                      v.target_error);
+  v.speedup_total = cost_ratio_at_error({costs(u, true, 0, &fitted), costs(c, true, predictor, &fitted)},
+                                        sampler(true), v.target_error);
 }
 }  // namespace
 
@@ -64,10 +106,13 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   v.target_error = kNaN;
   const auto c = usable_runs(clustered, v.clustered);
   const auto u = usable_runs(uniform, v.uniform);
-  v.clustered.cfd = fit_log_log(costs(c, false, 0));
-  v.clustered.total = fit_log_log(costs(c, true, predictor_cpu));
-  v.uniform.cfd = fit_log_log(costs(u, false, 0));
-  v.uniform.total = fit_log_log(costs(u, true, 0));
+  if (has_work(c) && has_work(u)) v.price = fit_work_price(work_of(c, u));
+  v.priced = v.price.ok;
+  const WorkPrice* price = v.priced ? &v.price : nullptr;
+  v.clustered.cfd = fit_log_log(costs(c, false, 0, price));
+  v.clustered.total = fit_log_log(costs(c, true, predictor_cpu, price));
+  v.uniform.cfd = fit_log_log(costs(u, false, 0, price));
+  v.uniform.total = fit_log_log(costs(u, true, 0, price));
   if (c.empty() || u.empty()) {
     v.note = "a family has no usable run";
     return v;
@@ -83,10 +128,19 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
     u_hi = std::max(u_hi, r.error);
   }
   v.extrapolated = v.target_error < u_lo || v.target_error > u_hi;
-  v.speedup_cfd = cost_ratio_at_error(costs(u, false, 0), costs(c, false, 0), v.target_error);
-  v.speedup_total = cost_ratio_at_error(costs(u, true, 0), costs(c, true, predictor_cpu), v.target_error);
+  v.measured_cfd = cost_ratio_at_error(costs(u, false, 0, nullptr), costs(c, false, 0, nullptr), v.target_error);
+  v.measured_total =
+      cost_ratio_at_error(costs(u, true, 0, nullptr), costs(c, true, predictor_cpu, nullptr), v.target_error);
+  if (v.priced) {
+    priced_speedups(v, c, u);
+  } else {
+    v.speedup_cfd = v.measured_cfd;
+    v.speedup_total = v.measured_total;
+  }
   v.verdict = verdict_of(v.speedup_total);
   v.verdict_cfd = verdict_of(v.speedup_cfd);
+  if (!v.priced)
+    v.note = "fewer than three runs with cells, steps and CPU: costs are the measured single timings";
   if (!std::isfinite(v.speedup_cfd.value))
     v.note = "a family has fewer than 3 usable runs or its error does not fall with cost: no fit";
   else if (v.extrapolated)
@@ -98,6 +152,30 @@ nlohmann::json interval_json(const Interval& i) {
   auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   return {{"value", num(i.value)}, {"ci_low", num(i.ci_low)}, {"ci_high", num(i.ci_high)}};
 }
+
+double verdict_cfd_cpu(const Verdict& v, long cells, long steps, double measured) {
+  return v.priced ? v.price.cfd({cells, steps, measured, 0}) : measured;
+}
+
+double verdict_mesh_cpu(const Verdict& v, long cells, long steps, double measured) {
+  return v.priced ? v.price.mesh({cells, steps, 0, measured}) : measured;
+}
+
+namespace {
+nlohmann::json price_json(const Verdict& v) {
+  if (!v.priced) return {{"model", "measured"}};
+  const WorkPrice& p = v.price;
+  return {{"model", "priced"},
+          {"runs", p.runs},
+          {"cfd_seconds_per_step", p.per_step},
+          {"cfd_us_per_cell_step", p.per_cell_step * 1e6},
+          {"mesh_base_seconds", p.mesh_base},
+          {"mesh_us_per_cell", p.mesh_per_cell * 1e6},
+          {"cfd_timing_log_sd", p.cfd_log_sd},
+          {"mesh_timing_log_sd", p.mesh_log_sd}};
+}
+
+}  // namespace
 
 nlohmann::json verdict_json(const Verdict& v) {
   auto fit = [](const LogLogFit& f) {
@@ -117,6 +195,10 @@ nlohmann::json verdict_json(const Verdict& v) {
           {"verdict", v.verdict},
           {"verdict_cfd", v.verdict_cfd},
           {"predictor_cpu_seconds", v.predictor_cpu},
+          {"cost", price_json(v)},
+          {"measured_cpu", {{"speedup_cfd", interval_json(v.measured_cfd)},
+                            {"speedup_total", interval_json(v.measured_total)},
+                            {"verdict", verdict_of(v.measured_total)}}},
           {"families", {{"clustered", fam(v.clustered)}, {"uniform", fam(v.uniform)}}},
           {"note", v.note}};
 }

@@ -3,6 +3,8 @@
 // log-log fit of error against cost per family, the cost ratio at a target
 // error with a 95% interval, and the verdict read from that interval.
 #include <cstdint>
+#include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,17 @@ struct EqualErrorOptions {
 };
 Interval cost_ratio_at_error(const std::vector<CostError>& slow, const std::vector<CostError>& fast,
                              double target_error, const EqualErrorOptions& o = {});
+
+// The same with costs that carry their own uncertainty (a priced cost
+// model, one timing's scatter): `sample` returns both families' runs as one
+// draw sees them, with freshly drawn costs; the errors are perturbed and the
+// fits drawn as above. `nominal` gives the central value.
+struct FamilyPair {
+  std::vector<CostError> slow, fast;
+};
+using CostSampler = std::function<FamilyPair(std::mt19937_64&)>;
+Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sample, double target_error,
+                             const EqualErrorOptions& o = {});
 
 // "faster" when the interval lies above 1, "slower" below 1, otherwise
 // "not distinguishable" (also when the ratio could not be computed).

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/equal_error.hpp"
+#include "pipeline/work_price.hpp"
 #include "scene/scene.hpp"
 
 namespace pipeline {
@@ -27,6 +28,7 @@ struct VerdictRun {
   std::string family;     // clustered | uniform
   double level = 1;
   long cells = 0;
+  long steps = 0;         // solver time steps to steady state
   double cfd_cpu = 0;     // solver CPU seconds (all ranks)
   double mesh_cpu = 0;    // gmsh + gmshToFoam + checkMesh CPU seconds
   double error = 0;       // primary error
@@ -48,9 +50,18 @@ struct Verdict {
   std::string verdict = "not distinguishable";      // on total CPU (predictor and meshing counted)
   std::string verdict_cfd = "not distinguishable";  // on CFD CPU alone
   double predictor_cpu = 0;
+  // Costs are priced by the work model fitted on this run's timings
+  // (work_price.hpp) when `priced`; otherwise the measured CPU seconds.
+  bool priced = false;
+  WorkPrice price;
+  Interval measured_cfd, measured_total;  // the same ratios on the measured single timings
   FamilyFitInfo clustered, uniform;
   std::string note;             // why no verdict could be given, when none
 };
+
+// A run's CFD and meshing CPU seconds as the verdict counts them.
+double verdict_cfd_cpu(const Verdict& v, long cells, long steps, double measured);
+double verdict_mesh_cpu(const Verdict& v, long cells, long steps, double measured);
 
 Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,
                      const std::vector<VerdictRun>& uniform, double predictor_cpu);

@@ -331,6 +331,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   out["summary"] = out_of_sample_summary(out);
 
   plot_png(plot, o.out_dir + "/calibration.png");
+  table.cpu_seconds = cpu_seconds() - cpu0;
   write_calibration(table, table_path);
   scene::write_json_atomic(o.out_dir + "/calibration.json", out);
   scene::write_file_atomic(

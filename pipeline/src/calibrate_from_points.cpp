@@ -72,6 +72,9 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
+  // What the crossings cost to measure, when the points file records it.
+  table.cpu_seconds = j.contains("cpu_seconds") && j["cpu_seconds"].is_number() ? j["cpu_seconds"].get<double>()
+                                                                                 : std::nan("");
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;
   write_calibration(table, out);
   nlohmann::json r = {{"points", pts.size()}, {"case_studies_left_out", skipped},

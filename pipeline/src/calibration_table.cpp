@@ -84,6 +84,8 @@ CalibrationTable read_calibration(const std::string& path) {
   }
   try {
     if (root["gamma"]) t.gamma = root["gamma"].as<double>();
+    t.cpu_seconds = optional_number(root, "cpu_seconds", kNaN);
+    if (std::isfinite(t.cpu_seconds) && t.cpu_seconds < 0) bad(path, root["cpu_seconds"], "cpu_seconds", "negative");
     for (const auto& n : root["entries"]) {
       CalibrationEntry e;
       e.mach = n["mach"].as<double>();
@@ -135,6 +137,7 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
   YAML::Emitter e;
   e.SetDoublePrecision(kEntryDigits);
   e << YAML::BeginMap << YAML::Key << "gamma" << YAML::Value << t.gamma;
+  if (std::isfinite(t.cpu_seconds)) e << YAML::Key << "cpu_seconds" << YAML::Value << t.cpu_seconds;
   e.SetDoublePrecision(kCoefficientDigits);
   if (t.model) {
     e << YAML::Key << "model" << YAML::Value << model_key(*t.model);

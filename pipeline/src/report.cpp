@@ -259,6 +259,14 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
     md << "\"not distinguishable\" means the 95% interval contains 1.";
     if (!v.note.empty()) md << " Note: " << v.note << ".";
     md << "\n\n";
+    if (std::isfinite(v.calibration.cpu_seconds)) {
+      const auto& k = v.calibration;
+      md << "Calibration, a separate line: the restitution table cost " << format_number(k.cpu_seconds, 3)
+         << " CPU s once and serves every scene (" << format_number(k.cpu_seconds / std::max(1, k.scenes_served), 3)
+         << " s each over the " << k.scenes_served << " case studies; not in the totals above). Charged to this "
+            "scene alone, the total speedup would be " << interval_text(k.speedup_total_if_alone) << " — "
+         << k.verdict_if_alone << ".\n\n";
+    }
     if (v.priced) {
       const WorkPrice& p = v.price;
       md << "Costs are **priced**: each grid's cells and solver steps (the same on every run) at this run's fitted "

@@ -16,6 +16,7 @@
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/stage_cache.hpp"
+#include "pipeline/studies.hpp"
 #include "pipeline/verdict.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
@@ -110,6 +111,13 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids, const P
   return j;
 }
 
+// The table a scene's run reads: --calibration, else the scene's
+// pipeline.calibration, else the one built in.
+std::string calibration_path(const scene::Scene& s, const std::string& table_path) {
+  if (!table_path.empty()) return table_path;
+  return s.pipeline.calibration.empty() ? builtin_calibration_path() : s.pipeline.calibration;
+}
+
 std::vector<VerdictRun> verdict_runs(const std::vector<GridRun>& runs) {
   std::vector<VerdictRun> out;
   for (const auto& r : runs)
@@ -133,14 +141,19 @@ std::string clustered_family(const std::string& predictor) {
 
 std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
 
+double calibration_cost(const scene::Scene& s, const std::string& table_path) {
+  if (!s.body || s.granular.restitution_given) return kNaN;
+  const std::string path = calibration_path(s, table_path);
+  return fs::exists(path) ? read_calibration(path).cpu_seconds : kNaN;
+}
+
 std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return "";
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
   // wedges that the report states.
   const bool wedge = s.body->kind == scene::BodyKind::wedge;
-  std::string path = table_path;
-  if (path.empty()) path = s.pipeline.calibration.empty() ? builtin_calibration_path() : s.pipeline.calibration;
+  const std::string path = calibration_path(s, table_path);
   if (!fs::exists(path)) return "no calibration table at " + path + "; restitution left at its default";
   const auto t = read_calibration(path);
   const auto e = interpolate_restitution(t, s.freestream.mach, wedge ? s.body->angle_deg : kNaN);
@@ -212,6 +225,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   scene::make_dirs(o.out_dir);
   const scene::DirLock lock(o.out_dir);
+  const double calib_cpu = o.predictor == "granular" ? calibration_cost(s, o.calibration_path) : kNaN;
   const std::string calib_note = apply_calibration(s, o.calibration_path);
   if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));
@@ -248,7 +262,9 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   for (auto& r : fam_c) score(r, ref);
   for (auto& r : fam_u) score(r, ref);
   const Comparison cmp = compare(fam_c, fam_u, pred.wall_seconds);
-  const Verdict verdict = make_verdict(primary, verdict_runs(fam_c), verdict_runs(fam_u), pred.cpu_seconds);
+  Verdict verdict = make_verdict(primary, verdict_runs(fam_c), verdict_runs(fam_u), pred.cpu_seconds);
+  charge_calibration(verdict, verdict_runs(fam_c), verdict_runs(fam_u), calib_cpu,
+                     static_cast<int>(case_study_scenes().size()));
   ReportInputs in{s, o.out_dir, pred, ref, cmp, verdict, calib_note, seconds_since(t_start), convergence};
   const nlohmann::json summary = make_summary(in);
   const std::string suffix = o.output_suffix.value_or("");

@@ -148,6 +148,16 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   return v;
 }
 
+void charge_calibration(Verdict& v, const std::vector<VerdictRun>& clustered, const std::vector<VerdictRun>& uniform,
+                        double calibration_cpu, int scenes_served) {
+  if (!std::isfinite(calibration_cpu)) return;
+  const Verdict alone = make_verdict(v.primary, clustered, uniform, v.predictor_cpu + calibration_cpu);
+  v.calibration.cpu_seconds = calibration_cpu;
+  v.calibration.scenes_served = scenes_served;
+  v.calibration.speedup_total_if_alone = alone.speedup_total;
+  v.calibration.verdict_if_alone = alone.verdict;
+}
+
 nlohmann::json interval_json(const Interval& i) {
   auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   return {{"value", num(i.value)}, {"ci_low", num(i.ci_low)}, {"ci_high", num(i.ci_high)}};
@@ -175,6 +185,14 @@ nlohmann::json price_json(const Verdict& v) {
           {"mesh_timing_log_sd", p.mesh_log_sd}};
 }
 
+nlohmann::json calibration_json(const Verdict::Calibration& c) {
+  if (!std::isfinite(c.cpu_seconds)) return nullptr;
+  return {{"cpu_seconds", c.cpu_seconds},
+          {"scenes_served", c.scenes_served},
+          {"cpu_seconds_per_scene", c.scenes_served > 0 ? c.cpu_seconds / c.scenes_served : c.cpu_seconds},
+          {"speedup_total_if_alone", interval_json(c.speedup_total_if_alone)},
+          {"verdict_if_alone", c.verdict_if_alone}};
+}
 }  // namespace
 
 nlohmann::json verdict_json(const Verdict& v) {
@@ -196,6 +214,7 @@ nlohmann::json verdict_json(const Verdict& v) {
           {"verdict_cfd", v.verdict_cfd},
           {"predictor_cpu_seconds", v.predictor_cpu},
           {"cost", price_json(v)},
+          {"calibration", calibration_json(v.calibration)},
           {"measured_cpu", {{"speedup_cfd", interval_json(v.measured_cfd)},
                             {"speedup_total", interval_json(v.measured_total)},
                             {"verdict", verdict_of(v.measured_total)}}},

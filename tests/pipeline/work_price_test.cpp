@@ -143,3 +143,17 @@ TEST(Rejudge, MissingOrMalformedSummaryIsAnInputErrorNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find(dir + "/summary.json: runs[0]: key 'cells'"), std::string::npos) << e.what();
   }
 }
+
+TEST(PricedVerdict, CalibrationIsASeparateLineThatLowersTheTotalWhenChargedAlone) {
+  const Families f = families(0.0, 1);
+  auto v = pipeline::make_verdict(kPrimary, f.clustered, f.uniform, kPredictorCpu);
+  const double before = v.speedup_total.value;
+  pipeline::charge_calibration(v, f.clustered, f.uniform, std::nan(""), 5);
+  EXPECT_TRUE(std::isnan(v.calibration.cpu_seconds)) << "no table, no line";
+  constexpr double kCalibrationCpu = 100.0;
+  pipeline::charge_calibration(v, f.clustered, f.uniform, kCalibrationCpu, 5);
+  EXPECT_DOUBLE_EQ(v.speedup_total.value, before) << "the verdict itself does not carry the calibration";
+  EXPECT_LT(v.calibration.speedup_total_if_alone.value, before);
+  const auto j = pipeline::verdict_json(v)["calibration"];
+  EXPECT_DOUBLE_EQ(j["cpu_seconds_per_scene"].get<double>(), kCalibrationCpu / 5);
+}

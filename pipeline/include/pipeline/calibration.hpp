@@ -33,6 +33,9 @@ struct CalibrationTable {
   std::vector<RestitutionFit>
       fits;  // every candidate (the chosen one and the Mach-only one at least)
   const RestitutionFit* fit(RestitutionModel m) const;
+  // CPU seconds the table cost to make (training runs and out-of-sample
+  // checks); NaN when not recorded. Reports amortise it over the scenes it serves.
+  double cpu_seconds = std::numeric_limits<double>::quiet_NaN();
 };
 
 CalibrationTable read_calibration(

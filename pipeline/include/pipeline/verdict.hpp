@@ -4,6 +4,7 @@
 // primary error is fitted against CPU cost (log-log, equal_error.hpp) and
 // the cost ratio read at the clustered family's finest error, with a 95%
 // interval; "faster"/"slower" only when the interval excludes 1.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,16 @@ struct Verdict {
   WorkPrice price;
   Interval measured_cfd, measured_total;  // the same ratios on the measured single timings
   FamilyFitInfo clustered, uniform;
+  // The restitution calibration, made once and shared by every scene it
+  // serves, as a separate line: its CPU, its share over the scenes it serves,
+  // and the total speedup if this scene alone paid for it. NaN/empty when
+  // the scene's predictor used no calibration table.
+  struct Calibration {
+    double cpu_seconds = std::numeric_limits<double>::quiet_NaN();
+    int scenes_served = 0;
+    Interval speedup_total_if_alone{};
+    std::string verdict_if_alone;
+  } calibration;
   std::string note;             // why no verdict could be given, when none
 };
 
@@ -65,6 +76,11 @@ double verdict_mesh_cpu(const Verdict& v, long cells, long steps, double measure
 
 Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,
                      const std::vector<VerdictRun>& uniform, double predictor_cpu);
+
+// Fills v.calibration: the same comparison with the calibration's whole CPU
+// added to the predictor's.
+void charge_calibration(Verdict& v, const std::vector<VerdictRun>& clustered, const std::vector<VerdictRun>& uniform,
+                        double calibration_cpu, int scenes_served);
 
 nlohmann::json interval_json(const Interval& i);
 nlohmann::json verdict_json(const Verdict& v);

@@ -32,7 +32,9 @@ nlohmann::json GridRun::to_json() const {
           {"primary_error", primary_error}, {"primary_error_ci", primary_error_ci}, {"l1_density", l1_density},
           {"l1_density_ci", l1_density_ci}, {"l1_pressure", l1_pressure},
           {"stagnation_pressure_ratio", stagnation_pressure_ratio},
-          {"stagnation_pressure_error", stagnation_pressure_error}, {"drag_coefficient", drag_coefficient},
+          {"stagnation_pressure_error", stagnation_pressure_error},
+          {"stagnation_pressure_error_ci", stagnation_pressure_error_ci}, {"l1_total_enthalpy", l1_total_enthalpy},
+          {"shock_axis_deviation_cells", shock_axis_deviation_cells}, {"drag_coefficient", drag_coefficient},
           {"note", note}};
 }
 

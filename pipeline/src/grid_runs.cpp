@@ -169,7 +169,12 @@ void GridRunner::measure(const std::string& name, const PrimaryError& primary, G
     run.stagnation_pressure_ratio = e.stagnation_pressure_ratio;
     run.stagnation_pressure_error = e.stagnation_pressure.value;
     run.drag_coefficient = e.drag_coefficient;
-    const MeasuredError& p = primary.name == "l1_density" ? e.l1_density : e.stagnation_pressure;
+    run.l1_total_enthalpy = e.l1_total_enthalpy.value;
+    run.stagnation_pressure_error_ci = e.stagnation_pressure.uncertainty;
+    run.shock_axis_deviation_cells = e.shock_axis_deviation_cells;
+    const MeasuredError& p = primary.name == "l1_density"          ? e.l1_density
+                             : primary.name == "l1_total_enthalpy" ? e.l1_total_enthalpy
+                                                                   : e.stagnation_pressure;
     run.primary_error = p.value;
     run.primary_error_ci = std::isfinite(p.uncertainty) ? p.uncertainty : 0.0;
   } catch (const std::exception& ex) {

@@ -10,6 +10,7 @@
 
 #include "cfd/run_case.hpp"
 #include "json_fields.hpp"
+#include "pipeline/bow_shock_check.hpp"
 #include "pipeline/figures.hpp"
 #include "pipeline/plot.hpp"
 #include "scene/body.hpp"
@@ -433,8 +434,14 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
   runs_table(md, in);
   convergence_section(md, in.grid_convergence);
   for (const auto* fam : {&c.uniform, &c.clustered})
-    for (const auto& r : *fam)
+    for (const auto& r : *fam) {
       if (!r.note.empty()) warnings.lines.push_back(grid_name(r) + ": " + r.note);
+      if (r.shock_axis_deviation_cells > kCarbuncleCells)
+        warnings.lines.push_back(grid_name(r) + ": the bow shock strays " + format_number(r.shock_axis_deviation_cells, 2) +
+                                 " cells from its smooth shape at the symmetry axis (a carbuncle is suspected; over " +
+                                 format_number(kCarbuncleCells, 2) +
+                                 " cells): its stagnation pressure reads a damaged stagnation streamline");
+    }
   if (!warnings.lines.empty()) {
     md << "## Warnings\n\n";
     for (const auto& l : warnings.lines) md << "- " << l << "\n";

@@ -91,10 +91,12 @@ PrimaryError primary_error_for(const scene::Scene& s) {
             "exact oblique-shock solution (theta-beta-Mach), averaged over each CFD cell",
             "the attached-wedge flow is piecewise constant, so the L1 density error against the exact cell averages "
             "measures the whole field, shock position and smearing included, with no reference grid"};
-  return {"stagnation_pressure",
-          "Rayleigh pitot formula (exact for inviscid flow)",
-          "the stagnation-point pressure has an exact value behind any bow shock (normal shock, then isentropic "
-          "compression), so it needs no reference grid; standoff and shape are shown beside it"};
+  return {"l1_total_enthalpy",
+          "free-stream total enthalpy (exact for steady inviscid adiabatic flow, across shocks too)",
+          "the total enthalpy is the free stream's everywhere ahead of the body's widest section, so its L1 error "
+          "over the forebody measures the captured bow shock's smearing and the errors it leaves behind with no "
+          "reference grid; the stagnation-point value (Rayleigh pitot) reads one streamline and does not converge "
+          "monotonically on these grids, so it is shown beside it"};
 }
 
 Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,

@@ -37,6 +37,9 @@ struct GridRun {
   double l1_pressure = std::numeric_limits<double>::quiet_NaN();
   double stagnation_pressure_ratio = std::numeric_limits<double>::quiet_NaN();
   double stagnation_pressure_error = std::numeric_limits<double>::quiet_NaN();
+  double stagnation_pressure_error_ci = std::numeric_limits<double>::quiet_NaN();
+  double l1_total_enthalpy = std::numeric_limits<double>::quiet_NaN();
+  double shock_axis_deviation_cells = std::numeric_limits<double>::quiet_NaN();  // carbuncle check
   double drag_coefficient = std::numeric_limits<double>::quiet_NaN();
   std::string note;          // what went wrong measuring this run, if anything
   double cpu_us_per_cell_step() const;

@@ -18,7 +18,7 @@ namespace pipeline {
 
 // The error that drives the verdict for a scene, and why.
 struct PrimaryError {
-  std::string name;       // l1_density | stagnation_pressure
+  std::string name;       // l1_density | l1_total_enthalpy
   std::string reference;  // how the reference value is obtained
   std::string why;        // one sentence for the report
 };

@@ -240,4 +240,10 @@ CaseErrors measure_case_errors(const scene::Scene& s, const std::string& case_di
   return e;
 }
 
+MeasuredError measure_named(const CaseErrors& e, const std::string& name) {
+  if (name == "l1_density") return e.l1_density;
+  if (name == "l1_total_enthalpy") return e.l1_total_enthalpy;
+  return e.stagnation_pressure;
+}
+
 }  // namespace pipeline

@@ -172,9 +172,7 @@ void GridRunner::measure(const std::string& name, const PrimaryError& primary, G
     run.l1_total_enthalpy = e.l1_total_enthalpy.value;
     run.stagnation_pressure_error_ci = e.stagnation_pressure.uncertainty;
     run.shock_axis_deviation_cells = e.shock_axis_deviation_cells;
-    const MeasuredError& p = primary.name == "l1_density"          ? e.l1_density
-                             : primary.name == "l1_total_enthalpy" ? e.l1_total_enthalpy
-                                                                   : e.stagnation_pressure;
+    const MeasuredError p = measure_named(e, primary.name);
     run.primary_error = p.value;
     run.primary_error_ci = std::isfinite(p.uncertainty) ? p.uncertainty : 0.0;
   } catch (const std::exception& ex) {

@@ -49,6 +49,9 @@ int main(int argc, char** argv) {
                    "current method; writes RUNDIR/verdict.json, runs nothing");
     std::string judge_dir;
     judge->add_option("rundir", judge_dir, "a `pipeline run` output directory")->required();
+    bool remeasure = false;
+    judge->add_flag("--remeasure", remeasure,
+                    "measure every grid's errors again from its CFD case with the current measures");
 
     auto* predict = app.add_subcommand("predict", "the shock predictor alone: shock.csv, summary.json, shock.png");
     pipeline::PredictOptions po;
@@ -159,7 +162,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (judge->parsed()) {
-      std::cout << pipeline::write_rejudged(judge_dir) << "\n";
+      std::cout << pipeline::write_rejudged(judge_dir, remeasure) << "\n";
       return 0;
     }
     if (predict->parsed()) {

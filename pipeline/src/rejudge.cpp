@@ -4,9 +4,12 @@
 #include <filesystem>
 
 #include "json_fields.hpp"
+#include "pipeline/error_measures.hpp"
+#include "pipeline/grid_runs.hpp"
 #include "pipeline/report.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/scene.hpp"
 
 namespace pipeline {
 
@@ -43,7 +46,15 @@ VerdictRun verdict_run(const nlohmann::json& r, const std::string& where) {
 
 }  // namespace
 
-Verdict rejudge_summary(const std::string& summary_path) {
+namespace {
+
+struct RecordedRuns {
+  std::vector<VerdictRun> clustered, uniform;
+  PrimaryError primary;
+  double predictor_cpu = 0;
+};
+
+RecordedRuns recorded_runs(const std::string& summary_path) {
   const nlohmann::json s = read_summary(summary_path);
   if (!s.contains("runs") || !s["runs"].is_array())
     throw scene::InputError(summary_path + ": key 'runs' missing (not a `pipeline run` summary)");
@@ -62,12 +73,51 @@ Verdict rejudge_summary(const std::string& summary_path) {
   const double predictor_cpu = number_or_nan(details, "predictor_cpu_seconds");
   if (!std::isfinite(predictor_cpu))
     throw scene::InputError(summary_path + ": key 'verdict_details.predictor_cpu_seconds' missing");
-  return make_verdict(primary, clustered, uniform, predictor_cpu);
+  return {clustered, uniform, primary, predictor_cpu};
 }
 
-std::string write_rejudged(const std::string& run_dir) {
+// Each grid's primary error measured again from its case.
+void remeasure(const scene::Scene& s, const std::string& run_dir, const PrimaryError& primary,
+               std::vector<VerdictRun>& runs, nlohmann::json& errors) {
+  for (auto& r : runs) {
+    const std::string name = level_name(r.family, r.level);
+    try {
+      const MeasuredError m = measure_named(measure_case_errors(s, run_dir + "/cfd/" + name), primary.name);
+      r.error = m.value;
+      r.error_ci = std::isfinite(m.uncertainty) ? m.uncertainty : 0.0;
+      errors[name] = {{"primary_error", r.error}, {"primary_error_ci", r.error_ci}};
+    } catch (const std::exception& e) {
+      r.error = std::numeric_limits<double>::quiet_NaN();
+      errors[name] = {{"note", std::string("not measured: ") + e.what()}};
+    }
+  }
+}
+
+Verdict remeasured_verdict(const std::string& run_dir, nlohmann::json& errors) {
+  RecordedRuns rec = recorded_runs(run_dir + "/summary.json");
+  const scene::Scene s = scene::load_scene(run_dir + "/scene.resolved.yaml");
+  const PrimaryError primary = primary_error_for(s);
+  remeasure(s, run_dir, primary, rec.uniform, errors);
+  remeasure(s, run_dir, primary, rec.clustered, errors);
+  return make_verdict(primary, rec.clustered, rec.uniform, rec.predictor_cpu);
+}
+
+}  // namespace
+
+Verdict rejudge_summary(const std::string& summary_path) {
+  const RecordedRuns rec = recorded_runs(summary_path);
+  return make_verdict(rec.primary, rec.clustered, rec.uniform, rec.predictor_cpu);
+}
+
+Verdict rejudge_remeasured(const std::string& run_dir) {
+  nlohmann::json errors = nlohmann::json::object();
+  return remeasured_verdict(run_dir, errors);
+}
+
+std::string write_rejudged(const std::string& run_dir, bool remeasure_errors) {
   const std::string path = run_dir + "/summary.json";
-  const Verdict v = rejudge_summary(path);
+  nlohmann::json errors = nlohmann::json::object();
+  const Verdict v = remeasure_errors ? remeasured_verdict(run_dir, errors) : rejudge_summary(path);
   nlohmann::json j;
   j["scene"] = read_summary(path).value("scene", "");
   j["primary_error"] = v.primary.name;
@@ -75,6 +125,7 @@ std::string write_rejudged(const std::string& run_dir) {
   j["speedup_total"] = interval_json(v.speedup_total);
   j["verdict"] = v.verdict;
   j["verdict_details"] = verdict_json(v);
+  if (remeasure_errors) j["remeasured_errors"] = errors;
   const std::string line = verdict_line(j);
   j["verdict_line"] = line;
   scene::write_json_atomic(run_dir + "/verdict.json", j);

@@ -71,8 +71,14 @@ void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::ve
     return [&, total](std::mt19937_64& rng) {
       const WorkPrice p = draw_work_price(work, fitted, rng);
       const WorkPrice& use = p.ok ? p : fitted;
+      // The scatter itself is estimated from the fit's residuals (runs - 2
+      // degrees of freedom): drawn from its chi-square, so one timing's
+      // deviation follows a Student t rather than a normal.
       std::normal_distribution<double> normal(0.0, 1.0);
-      const double pred = predictor * std::exp(fitted.cfd_log_sd * normal(rng));
+      const int dof = std::max(1, fitted.runs - 2);
+      std::chi_squared_distribution<double> chi2(dof);
+      const double sd = fitted.cfd_log_sd * std::sqrt(dof / std::max(chi2(rng), 1e-300));
+      const double pred = predictor * std::exp(sd * normal(rng));
       return FamilyPair{costs(u, total, 0, &use), costs(c, total, pred, &use)};
     };
   };

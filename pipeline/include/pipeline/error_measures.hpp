@@ -73,6 +73,10 @@ double piecewise_l1(const cfd::Mesh2D& mesh, const std::vector<double>& field,
 // the axis) does not, and averages the cell-to-cell scatter of the faces.
 double stagnation_pressure(const cfd::Mesh2D& mesh, const std::vector<double>& p);
 
+// The measure named `name` (l1_density, l1_total_enthalpy or
+// stagnation_pressure: the verdict's primary error) of a case's errors.
+MeasuredError measure_named(const CaseErrors& e, const std::string& name);
+
 // L1 distance of the total enthalpy H = gamma p / ((gamma - 1) rho) + |U|^2 / 2
 // from the free stream's, relative to it, over sum |A_c| of the cells whose
 // centre lies at x <= x_max (the forebody), in the CFD units (free stream

@@ -15,8 +15,15 @@ namespace pipeline {
 // file and key when a run lacks what the verdict needs).
 Verdict rejudge_summary(const std::string& summary_path);
 
-// verdict.json beside the summary: the verdict's details, the scene name
-// and the line `pipeline run` prints; returns that line.
-std::string write_rejudged(const std::string& run_dir);
+// The same with every grid's errors measured again from its CFD case
+// (RUNDIR/cfd/<grid>) by the current error measures, and the primary error
+// chosen for the resolved scene (RUNDIR/scene.resolved.yaml) as a new run
+// would; a case that cannot be read leaves that grid out of the fit.
+Verdict rejudge_remeasured(const std::string& run_dir);
+
+// verdict.json beside the summary: the verdict's details, the scene name,
+// with `remeasure` every grid's new errors, and the line `pipeline run`
+// prints; returns that line.
+std::string write_rejudged(const std::string& run_dir, bool remeasure = false);
 
 }  // namespace pipeline

@@ -65,9 +65,16 @@ TEST(PredictorSlow, AdaptSizesTheWedgeGridsAtTheShock) {
     double at_shock = 0, ahead = 0;
     ASSERT_TRUE(lat.sample("h", 0.5, 0.5 * std::tan(beta * kDeg), at_shock));
     ASSERT_TRUE(lat.sample("h", -0.15, 0.7, ahead));
-    constexpr double kShockSizeFactor = 2.0;  // the coarse shock spans 3-4 cells: the metric peaks within it
+    // The coarse shock spans 3-4 cells and the metric peaks within them:
+    // at the exact shock h stays within twice h_min (measured 1.3-1.6).
+    constexpr double kShockSizeFactor = 2.0;
+    // Ahead of the shock the field is clamped at h_max or, on the coarser
+    // levels, held below it by the gradation from the shock; either way at
+    // least this many times the size at the shock (measured 2.5-2.8).
+    constexpr double kFreeStreamFactor = 2.0;
     EXPECT_LE(at_shock, kShockSizeFactor * h_min) << "level " << level;
-    EXPECT_EQ(ahead, h_max) << "level " << level;
+    EXPECT_GE(ahead, kFreeStreamFactor * at_shock) << "level " << level;
+    EXPECT_LE(ahead, h_max) << "level " << level;
   }
   // The family's grid at level 2 is meshed from its field (gmsh only).
   s.pipeline.cfd = false;

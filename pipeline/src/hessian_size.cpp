@@ -50,8 +50,10 @@ double max_abs_eigenvalue(double a, double b, double c) {
 void check_target(const SizeTarget& t) {
   if (!std::isfinite(t.h_min) || !std::isfinite(t.h_max) || !(t.h_min > 0) || t.h_min > t.h_max)
     throw scene::InputError("size field: h_min and h_max must be finite with 0 < h_min <= h_max");
-  if (!(t.growth > 1.0) || !std::isfinite(t.growth)) throw scene::InputError("size field: growth must exceed 1");
-  if (!(t.norm_p > 0) || !std::isfinite(t.norm_p)) throw scene::InputError("size field: the norm p must be positive");
+  if (!(t.growth > 1.0) || !std::isfinite(t.growth))
+    throw scene::InputError("size field: growth must exceed 1");
+  if (!(t.norm_p > 0) || !std::isfinite(t.norm_p))
+    throw scene::InputError("size field: the norm p must be positive");
   if (t.cells && !(std::isfinite(*t.cells) && *t.cells > 0))
     throw scene::InputError("size field: the target complexity must be a positive number of cells");
 }
@@ -71,7 +73,8 @@ scene::Lattice sizes_for(const scene::Lattice& lambda, const SizeTarget& t, doub
 
 }  // namespace
 
-scene::Lattice hessian_magnitude(const scene::Lattice& in, const std::string& field, int smoothing_passes) {
+scene::Lattice hessian_magnitude(const scene::Lattice& in, const std::string& field,
+                                 int smoothing_passes) {
   std::vector<double> f = in.field(field);
   for (int k = 0; k < smoothing_passes; ++k) f = smooth_once(in, f);
   scene::Lattice out(in.nx, in.ny, in.x0, in.y0, in.dx, in.dy);
@@ -94,7 +97,8 @@ scene::Lattice hessian_magnitude(const scene::Lattice& in, const std::string& fi
     for (int j = 0; j < in.ny; ++j)
       for (int i = 0; i < in.nx; ++i) {
         if (i > 0 && j > 0 && i + 1 < in.nx && j + 1 < in.ny) continue;
-        lam[in.index(i, j)] = lam[in.index(std::clamp(i, 1, in.nx - 2), std::clamp(j, 1, in.ny - 2))];
+        lam[in.index(i, j)] =
+            lam[in.index(std::clamp(i, 1, in.nx - 2), std::clamp(j, 1, in.ny - 2))];
       }
   return out;
 }
@@ -161,12 +165,15 @@ scene::Lattice size_from_hessian(const scene::Lattice& lambda, const SizeTarget&
   const double area = lambda.nx * lambda.dx * lambda.ny * lambda.dy;
   const double n_lo = area / (t.h_max * t.h_max), n_hi = area / (t.h_min * t.h_min);
   if (*t.cells < n_lo || *t.cells > n_hi)
-    throw scene::InputError("size field: a target of " + std::to_string(*t.cells) + " cells lies outside the " +
-                            std::to_string(n_lo) + " .. " + std::to_string(n_hi) + " that [h_min, h_max] allows");
+    throw scene::InputError("size field: a target of " + std::to_string(*t.cells) +
+                            " cells lies outside the " + std::to_string(n_lo) + " .. " +
+                            std::to_string(n_hi) + " that [h_min, h_max] allows");
   double lo = d_hmin, hi = d_hmin;
   int guard = 0;
-  while (lattice_complexity(sizes_for(lambda, t, q, lo)) > *t.cells && ++guard < kMaxBisections) lo *= 0.5;
-  while (lattice_complexity(sizes_for(lambda, t, q, hi)) < *t.cells && ++guard < kMaxBisections) hi *= 2.0;
+  while (lattice_complexity(sizes_for(lambda, t, q, lo)) > *t.cells && ++guard < kMaxBisections)
+    lo *= 0.5;
+  while (lattice_complexity(sizes_for(lambda, t, q, hi)) < *t.cells && ++guard < kMaxBisections)
+    hi *= 2.0;
   for (int it = 0; it < kMaxBisections && hi / lo > 1.0 + kComplexityPrecision; ++it) {
     const double mid = std::sqrt(lo * hi);
     (lattice_complexity(sizes_for(lambda, t, q, mid)) < *t.cells ? lo : hi) = mid;

@@ -6,14 +6,13 @@
 // the smallest cell h_min x level, the largest h_max x level, graded at
 // mesh.growth like every other grid. One adaptation cycle. The coarse run's
 // CPU seconds and the fields' are the prediction's cost.
-#include "pipeline/predictors.hpp"
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "cfd/run_case.hpp"
 #include "pipeline/hessian_size.hpp"
+#include "pipeline/predictors.hpp"
 #include "pipeline/stage_cache.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
@@ -82,7 +81,8 @@ Prediction AdaptPredictor::predict(const PredictContext& cx) const {
   p.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   p.details["coarse_cpu_seconds"] = p.cpu_seconds - field_cpu;
   p.details["size_field_cpu_seconds"] = field_cpu;
-  p.details["metric"] = "largest |eigenvalue| of the density Hessian, L^p-optimal isotropic size (docs/adapt.md)";
+  p.details["metric"] =
+      "largest |eigenvalue| of the density Hessian, L^p-optimal isotropic size (docs/adapt.md)";
   p.details["norm_p"] = kNormP;
   p.details["lattice"] = {nx, ny};
   p.details["smoothing_passes"] = kSmoothingPasses;

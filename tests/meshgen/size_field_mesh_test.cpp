@@ -5,11 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
@@ -77,7 +76,12 @@ std::vector<scene::Vec2> cell_centroids(const std::string& msh) {
         int id = 0, type = 0, ntags = 0;
         is >> id >> type >> ntags;
         for (int t = 0; t < ntags; ++t) is >> id;
-        const int per = type == 5 ? 8 : type == 6 ? 6 : type == 3 ? 4 : type == 2 ? 3 : type == 1 ? 2 : 1;
+        const int per = type == 5   ? 8
+                        : type == 6 ? 6
+                        : type == 3 ? 4
+                        : type == 2 ? 3
+                        : type == 1 ? 2
+                                    : 1;
         scene::Vec2 c;
         for (int v = 0; v < per; ++v) {
           std::size_t node = 0;
@@ -101,8 +105,9 @@ TEST(SizeFieldMesh, CellsConcentrateWhereTheFieldIsSmall) {
   const std::string dir = meshgen_test::fresh_dir("size_field");
   const std::string field = dir + "/size.vti";
   scene::write_vti(halves(d, x_split), field);
-  const CliRun r = run_meshgen(scene_path + " --size-field " + field + " --h-min " + std::to_string(kFine) +
-                               " --h-max " + std::to_string(kCoarse) + " --out " + dir + "/mesh");
+  const CliRun r =
+      run_meshgen(scene_path + " --size-field " + field + " --h-min " + std::to_string(kFine) +
+                  " --h-max " + std::to_string(kCoarse) + " --out " + dir + "/mesh");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto sum = nlohmann::json::parse(scene::read_file(dir + "/mesh/summary.json"));
   EXPECT_EQ(sum.value("kind", ""), "adapted");
@@ -165,7 +170,9 @@ TEST(SizeFieldMesh, BadSizeFieldsExitTwoNamingTheFile) {
 
   // A size field is a grid of its own: not with --shock or --uniform.
   scene::write_vti(halves(d, 0.0), dir + "/good.vti");
-  const CliRun both = run_meshgen(scene_path + " --size-field " + dir + "/good.vti --uniform --out " + dir + "/mesh");
+  const CliRun both = run_meshgen(scene_path + " --size-field " + dir +
+                                  "/good.vti --uniform --out " + dir + "/mesh");
   EXPECT_EQ(both.code, 2) << both.output;
-  EXPECT_NE(both.output.find("give one of --shock, --size-field and --uniform"), std::string::npos) << both.output;
+  EXPECT_NE(both.output.find("give one of --shock, --size-field and --uniform"), std::string::npos)
+      << both.output;
 }

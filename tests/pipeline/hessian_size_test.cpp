@@ -1,18 +1,19 @@
 // The Hessian size field on analytic lattices: exact Hessians of quadratics,
 // the L^p size law, a tanh jump (small at the jump, large away, gradation
 // respected), complexity targets met.
+#include "pipeline/hessian_size.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "pipeline/hessian_size.hpp"
 #include "scene/errors.hpp"
 
 namespace {
 
-constexpr int kN = 100;          // lattice cells per side on the unit square
-constexpr double kJumpX = 0.5;   // the tanh jump's position
+constexpr int kN = 100;         // lattice cells per side on the unit square
+constexpr double kJumpX = 0.5;  // the tanh jump's position
 constexpr double kJumpWidth = 0.02;
 // Central differences are exact on quadratics; only rounding remains.
 constexpr double kExactRel = 1e-8;
@@ -29,10 +30,16 @@ scene::Lattice unit_lattice(double (*f)(double, double)) {
   return lat;
 }
 
-double jump(double x, double) { return 2.0 + std::tanh((x - kJumpX) / kJumpWidth); }
+double jump(double x, double) {
+  return 2.0 + std::tanh((x - kJumpX) / kJumpWidth);
+}
 
-double lambda_at(const scene::Lattice& lam, int i, int j) { return lam.field("lambda")[lam.index(i, j)]; }
-double h_at(const scene::Lattice& h, int i, int j) { return h.field("h")[h.index(i, j)]; }
+double lambda_at(const scene::Lattice& lam, int i, int j) {
+  return lam.field("lambda")[lam.index(i, j)];
+}
+double h_at(const scene::Lattice& h, int i, int j) {
+  return h.field("h")[h.index(i, j)];
+}
 
 }  // namespace
 
@@ -43,7 +50,8 @@ TEST(HessianSize, QuadraticsHaveTheirExactLargestEigenvalue) {
   const double exact = 2.0 + std::sqrt(20.0);
   // Cells whose smoothed stencil reaches the lattice edge see a truncated filter.
   for (int j = 2; j < kN - 2; ++j)
-    for (int i = 2; i < kN - 2; ++i) ASSERT_NEAR(lambda_at(lam, i, j), exact, kExactRel * exact) << i << " " << j;
+    for (int i = 2; i < kN - 2; ++i)
+      ASSERT_NEAR(lambda_at(lam, i, j), exact, kExactRel * exact) << i << " " << j;
   // The outer ring copies its inner neighbour.
   EXPECT_EQ(lambda_at(lam, 0, 50), lambda_at(lam, 1, 50));
 }

@@ -24,7 +24,8 @@ namespace pipeline {
 // non-finite value (inside the body, cells no grid cell covers) get 0: no
 // information, the far-field size. Cells on the lattice's outer ring take
 // their inner neighbour's value.
-scene::Lattice hessian_magnitude(const scene::Lattice& in, const std::string& field, int smoothing_passes);
+scene::Lattice hessian_magnitude(const scene::Lattice& in, const std::string& field,
+                                 int smoothing_passes);
 
 struct SizeTarget {
   double h_min = 0, h_max = 0;  // lattice (scene) units

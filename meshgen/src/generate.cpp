@@ -82,6 +82,7 @@ Vec2 centroid(const PlaneMesh& m, const std::array<int, 4>& c) {
 
 // Everything that depends on the size scale factor.
 struct Sizing {
+  double scale = 1.0;
   SizeParams params;
   double uniform_h = 0;
   std::vector<ShockRun> runs;
@@ -95,10 +96,12 @@ struct Plan {
   std::optional<double> band_width;  // scene coordinates
   std::vector<Vec2> curve;
   std::vector<double> ci;
+  std::shared_ptr<const scene::Lattice> size_lattice;  // adapted grids (body lengths)
   std::optional<double> target;
 
   Sizing at(double scale, const FluidRegion& region) const {
     Sizing z;
+    z.scale = scale;
     z.params = base;
     z.params.h_min *= scale;
     z.params.h_max *= scale;
@@ -121,6 +124,7 @@ struct Plan {
   }
   SizeField field(const Sizing& z, const FluidRegion& region) const {
     if (uniform) return SizeField(z.uniform_h);
+    if (size_lattice) return SizeField(z.params, size_lattice, z.scale * region.length_scale, region.body.polyline);
     return SizeField(z.params, z.runs, region.body.polyline);
   }
 };
@@ -192,9 +196,13 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   if (mp.band_width) plan.band_width = *mp.band_width * L;
   plan.curve = r.shock_curve;
   plan.ci = r.shock_ci;
+  plan.size_lattice = r.size_field;
   plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
-  if (!r.uniform && r.shock_curve.empty())
-    throw scene::InputError(where + "a clustered grid needs a shock curve (meshgen --shock shock.csv)");
+  if (r.size_field && (r.uniform || !r.shock_curve.empty()))
+    throw scene::InputError(where + "a size field is a grid of its own: give it without a shock curve or --uniform");
+  if (!r.uniform && r.shock_curve.empty() && !r.size_field)
+    throw scene::InputError(where + "a clustered grid needs a shock curve (meshgen --shock shock.csv) or a size "
+                            "field (--size-field)");
 
   if (plan.uniform && plan.uniform_h / L < kMinCellSize)
     throw scene::InputError(where + "uniform cell size " + fmt_g(plan.uniform_h / L) +
@@ -306,7 +314,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   }
 
   MeshResult res;
-  res.kind = plan.uniform ? "uniform" : "clustered";
+  res.kind = plan.uniform ? "uniform" : plan.size_lattice ? "adapted" : "clustered";
   res.cells = mesh.volume_cells;
   res.seconds = gmsh_seconds;
   double hmin = std::numeric_limits<double>::infinity(), hmax = 0.0, band_max = 0.0;
@@ -387,6 +395,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   j["target_cells"] = plan.target ? nlohmann::json(*plan.target) : nlohmann::json(nullptr);
   j["estimated_cells"] = estimate;
   j["mesh_attempts"] = attempts;
+  j["size_field"] = r.size_field ? nlohmann::json(r.size_field_path) : nlohmann::json(nullptr);
   j["shock_points"] = plan.curve.size();
   std::size_t kept = 0;
   for (const ShockRun& run : sizing.runs) kept += run.points.size();

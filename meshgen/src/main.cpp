@@ -1,6 +1,7 @@
 // meshgen: gmsh grid clustered at a predicted shock, or its uniform twin.
 //   meshgen SCENE.yaml --shock shock.csv --out DIR
 //   meshgen SCENE.yaml --uniform --out DIR
+//   meshgen SCENE.yaml --size-field FIELD.vti [--h-min H] --out DIR
 // Writes DIR/mesh.msh, DIR/constant/polyMesh, DIR/summary.json, DIR/mesh*.png.
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -18,11 +19,14 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"meshgen: gmsh grid clustered at the predicted shock (or uniform), written for OpenFOAM"};
-  std::string scene_path, shock_path, out_dir;
+  std::string scene_path, shock_path, size_field_path, out_dir;
   bool uniform = false, dry_run = false;
   std::optional<double> h_min, h_max, target;
   app.add_option("scene", scene_path, "scene file (YAML)")->required();
   app.add_option("--shock", shock_path, "shock.csv from shockfit (columns shock_x, shock_y, accepted[, ci])");
+  app.add_option("--size-field", size_field_path,
+                 "adapted grid: lattice .vti with a field h, the target cell size (body lengths), clamped to "
+                 "[h_min, h_max]");
   app.add_flag("--uniform", uniform, "one cell size everywhere (mesh.h_uniform, default mesh.h_min)");
   app.add_option("--out", out_dir, "output folder")->required();
   // CLI11's PositiveNumber lets nan and inf through: ask for finite values.
@@ -47,8 +51,12 @@ int main(int argc, char** argv) {
     scene::require_supersonic(s, "meshgen");
     scene::refuse_out_overlap(out_dir, scene_path, "scene file");
     meshgen::MeshRequest req;
+    if (static_cast<int>(!shock_path.empty()) + static_cast<int>(!size_field_path.empty()) + static_cast<int>(uniform) > 1)
+      throw scene::InputError("give one of --shock, --size-field and --uniform");
     if (!shock_path.empty()) req = meshgen::request_from_shock_csv(shock_path);
-    else if (!uniform) throw scene::InputError("a clustered grid needs --shock shock.csv (or use --uniform)");
+    else if (!size_field_path.empty()) req = meshgen::request_from_size_field(size_field_path);
+    else if (!uniform)
+      throw scene::InputError("a clustered grid needs --shock shock.csv (or --size-field FIELD.vti, or --uniform)");
     req.uniform = uniform;
     req.h_min = h_min;
     req.h_max = h_max;

@@ -137,10 +137,37 @@ SizeField::SizeField(const SizeParams& p, const std::vector<ShockRun>& shock, co
   body_.build((p.h_max - p.h_body) / slope);
 }
 
+SizeField::SizeField(const SizeParams& p, std::shared_ptr<const scene::Lattice> h_lattice, double scale,
+                     const std::vector<Vec2>& body)
+    : uniform_(false), p_(p), lattice_(std::move(h_lattice)), lattice_values_(&lattice_->field("h")),
+      lattice_scale_(scale) {
+  std::vector<Vec2> closed = body;
+  if (!closed.empty()) closed.push_back(closed.front());
+  body_.add_polyline(closed, {});
+  body_.build((p.h_max - p.h_body) / (p.growth - 1.0));
+}
+
+// Bilinear between cell centres, held at the outermost centres beyond them
+// (the lattice need not reach the moved outlet); values are checked finite
+// and positive when the lattice is read.
+double SizeField::lattice_h(Vec2 p) const {
+  const scene::Lattice& lat = *lattice_;
+  const std::vector<double>& f = *lattice_values_;
+  const double fx = std::clamp((p.x - lat.x0) / lat.dx - 0.5, 0.0, static_cast<double>(lat.nx - 1));
+  const double fy = std::clamp((p.y - lat.y0) / lat.dy - 0.5, 0.0, static_cast<double>(lat.ny - 1));
+  const int i = std::min(static_cast<int>(fx), std::max(lat.nx - 2, 0));
+  const int j = std::min(static_cast<int>(fy), std::max(lat.ny - 2, 0));
+  const int i1 = std::min(i + 1, lat.nx - 1), j1 = std::min(j + 1, lat.ny - 1);
+  const double tx = fx - i, ty = fy - j;
+  return (1 - tx) * (1 - ty) * f[lat.index(i, j)] + tx * (1 - ty) * f[lat.index(i1, j)] +
+         (1 - tx) * ty * f[lat.index(i, j1)] + tx * ty * f[lat.index(i1, j1)];
+}
+
 double SizeField::operator()(Vec2 p) const {
   if (uniform_) return p_.h_min;
   const double slope = p_.growth - 1.0;
   double h = p_.h_max;
+  if (lattice_) h = std::clamp(lattice_scale_ * lattice_h(p), p_.h_min, p_.h_max);
   const double e = shock_.excess(p);
   if (std::isfinite(e)) h = std::min(h, p_.h_min + slope * std::max(e, 0.0));
   const double db = body_.excess(p);

@@ -49,6 +49,15 @@ double shock_ci(const shockfit::ShockResult& r) {
   return kNaN;
 }
 
+// The request of a clustered grid: the band round the shock curve, or the
+// level's size field when the prediction gives them.
+meshgen::MeshRequest clustered_request(const ShockInput& shock, double level) {
+  if (shock.size_fields.empty()) return meshgen::request_from_shock_csv(shock.shock_csv);
+  for (const auto& [l, path] : shock.size_fields)
+    if (same_level(l, level)) return meshgen::request_from_size_field(path);
+  throw scene::InputError("the prediction has no size field for level " + std::to_string(level));
+}
+
 }  // namespace
 
 void check_interrupt(const std::string& where) {
@@ -104,7 +113,7 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
   if (forced("meshgen")) cache_.invalidate(stage);
   if (cache_.fresh(stage, fp)) return cache_.result(stage);
   cache_.invalidate(stage);
-  meshgen::MeshRequest req = clustered ? meshgen::request_from_shock_csv(shock.shock_csv) : meshgen::MeshRequest{};
+  meshgen::MeshRequest req = clustered ? clustered_request(shock, level) : meshgen::MeshRequest{};
   req.uniform = !clustered;
   req.h_min = s_.mesh.h_min * level;
   req.h_max = clustered ? s_.mesh.h_max * level : s_.mesh.h_min * level;

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     bool force_budget = false;
     run->add_flag("--force-budget", force_budget, "run even when the estimate exceeds pipeline.budget_cpu_seconds");
     std::string predictor = "granular";
-    run->add_option("--predictor", predictor, "shock predictor: granular, correlation, coarse_cfd");
+    run->add_option("--predictor", predictor, "shock predictor: granular, correlation, coarse_cfd, adapt");
 
     auto* judge = app.add_subcommand(
         "verdict", "recompute a finished run's verdict from its recorded grids (RUNDIR/summary.json) with the "
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     auto* predict = app.add_subcommand("predict", "the shock predictor alone: shock.csv, summary.json, shock.png");
     pipeline::PredictOptions po;
     predict->add_option("scene", scene_path, "scene YAML")->required();
-    predict->add_option("--predictor", po.predictor, "granular, correlation, coarse_cfd")->required();
+    predict->add_option("--predictor", po.predictor, "granular, correlation, coarse_cfd, adapt")->required();
     predict->add_option("--out", po.out_dir, "output directory")->required();
     predict->add_option("--np", po.np, "processes")->check(CLI::PositiveNumber);
     predict->add_option("--calibration", po.calibration_path, "restitution table (granular)");

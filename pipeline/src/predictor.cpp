@@ -37,6 +37,8 @@ nlohmann::json Prediction::summary() const {
   j["wall_seconds"] = wall_seconds;
   j["shock_points"] = static_cast<long>(curve.size());
   j["shock_csv"] = shock_csv;
+  j["size_fields"] = nlohmann::json::array();
+  for (const auto& [level, path] : size_fields) j["size_fields"].push_back({{"level", level}, {"path", path}});
   j["details"] = details;
   return j;
 }
@@ -71,12 +73,13 @@ std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
 
 namespace pipeline {
 
-std::vector<std::string> predictor_names() { return {"granular", "correlation", "coarse_cfd"}; }
+std::vector<std::string> predictor_names() { return {"granular", "correlation", "coarse_cfd", "adapt"}; }
 
 std::unique_ptr<Predictor> make_predictor(const std::string& name) {
   if (name == "granular") return std::make_unique<GranularPredictor>();
   if (name == "correlation") return std::make_unique<CorrelationPredictor>();
   if (name == "coarse_cfd") return std::make_unique<CoarseCfdPredictor>();
+  if (name == "adapt") return std::make_unique<AdaptPredictor>();
   std::string known;
   for (const auto& n : predictor_names()) known += (known.empty() ? "" : ", ") + n;
   throw scene::InputError("--predictor: unknown predictor '" + name + "' (known: " + known + ")");

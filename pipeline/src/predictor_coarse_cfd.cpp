@@ -47,6 +47,7 @@ Prediction CoarseCfdPredictor::predict(const PredictContext& cx) const {
   write_shock_curve(p.shock_csv, p.curve, p.half_width);
   p.fingerprint = fingerprint({"coarse_cfd", scene::read_file(p.shock_csv)});
   p.details = {{"grid", level_name("uniform", level)}, {"level", level}, {"cells", run.cells},
+               {"case_dir", grids.case_dir("uniform", level)},
                {"steady_state_reached", run.steady}, {"cfd_cpu_seconds", run.cfd_cpu_seconds},
                {"mesh_cpu_seconds", run.mesh_cpu_seconds},
                {"why_this_level", "the uniform family's coarsest level: the cheapest CFD solution the engineer "

@@ -424,11 +424,12 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
   verdict_section(md, in);
   const auto& g = summary["prediction"];
   md << "Prediction (" << in.prediction.predictor << "): shock " << g.value("shock", "none") << ", ";
-  if (angle) md << "angle " << format_number(g.value("shock_angle_deg", kNaN), 4) << " deg (error " << format_number(g.value("error_deg", kNaN), 3) << " deg)";
-  else md << "standoff " << format_number(g.value("standoff", kNaN), 4) << " (relative error " << format_number(g.value("relative_error", kNaN), 3) << ")";
-  md << ", CPU " << format_number(g.value("cpu_seconds", kNaN), 3) << " s (wall " << format_number(g.value("wall_seconds", kNaN), 3)
+  // A predictor that located no shock (adapt still sizes its grids) leaves these null.
+  if (angle) md << "angle " << format_number(number_or_nan(g, "shock_angle_deg"), 4) << " deg (error " << format_number(number_or_nan(g, "error_deg"), 3) << " deg)";
+  else md << "standoff " << format_number(number_or_nan(g, "standoff"), 4) << " (relative error " << format_number(number_or_nan(g, "relative_error"), 3) << ")";
+  md << ", CPU " << format_number(number_or_nan(g, "cpu_seconds"), 3) << " s (wall " << format_number(number_or_nan(g, "wall_seconds"), 3)
      << " s).";
-  if (angle && std::abs(g.value("error_deg", 0.0)) > 1.0)
+  if (angle && std::abs(number_or_nan(g, "error_deg")) > 1.0)
     md << " **The predicted shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
   md << "\n\n";
   runs_table(md, in);

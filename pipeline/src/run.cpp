@@ -242,7 +242,9 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");
-  const ShockInput shock{pred.fingerprint, pred.shock_csv, pred.kind != ShockKind::none && pred.curve.size() >= 2};
+  const ShockInput shock{pred.fingerprint, pred.shock_csv,
+                         !pred.size_fields.empty() || (pred.kind != ShockKind::none && pred.curve.size() >= 2),
+                         pred.size_fields};
 
   // Both families, coarse to fine, interleaved level by level: a change in
   // the machine's load during the run then falls on both families alike.

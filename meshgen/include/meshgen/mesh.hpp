@@ -4,12 +4,14 @@
 //
 // gmsh is a process-global library: generate_mesh serialises its calls
 // (one mesh at a time per process) and keeps gmsh initialised between them.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 #include "scene/vec2.hpp"
 
@@ -21,10 +23,15 @@ struct MeshRequest {
   std::vector<double> shock_ci;          // 95% half-width per point along the normal; may be empty
   std::optional<double> h_min, h_max;    // override scene.mesh (body lengths); uniform: h_min is its size
   std::optional<double> target_cells;    // override scene.mesh.target_cells (wins over h_min/h_max)
+  // An adapted grid instead of a clustered one: target sizes from the
+  // lattice field "h" (body lengths), clamped to [h_min, h_max]; whatever
+  // made them (size_field.hpp).
+  std::shared_ptr<const scene::Lattice> size_field;
+  std::string size_field_path;  // where it was read, for summary.json
 };
 
 struct MeshResult {
-  std::string kind;  // clustered | uniform
+  std::string kind;  // clustered | uniform | adapted
   long cells = 0;
   double min_cell_size = 0, max_cell_size = 0;  // mean edge length of a cell, scene coordinates
   double max_non_orthogonality = 0, max_skewness = 0;  // checkMesh, degrees / -
@@ -51,5 +58,10 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
 // ci). InputError on a missing or empty file, a missing column, a bad
 // number, or no accepted rows.
 MeshRequest request_from_shock_csv(const std::string& path);
+
+// Reads a size field (a lattice .vti with a field "h", body lengths).
+// InputError naming the file when it is missing or malformed, has no "h",
+// or an h that is not finite and positive.
+MeshRequest request_from_size_field(const std::string& path);
 
 }  // namespace meshgen

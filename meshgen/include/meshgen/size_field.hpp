@@ -9,9 +9,17 @@
 //   h_body  = h_body0 + (growth - 1) d_body
 // A size that grows by (growth - 1) per unit distance makes each cell
 // `growth` times its neighbour: h(d + h) = h (1 + growth - 1).
+//
+// An adapted field takes h from a lattice instead of the shock band:
+//   h = min(clamp(scale * h_lattice, h_min, h_max), h_body)
+// with h_lattice interpolated bilinearly between cell centres (and held at
+// the outermost centres beyond them): the same body rule as the clustered
+// grids, whatever made the lattice.
+#include <memory>
 #include <vector>
 
 #include "meshgen/fluid_region.hpp"
+#include "scene/lattice.hpp"
 #include "scene/vec2.hpp"
 
 namespace meshgen {
@@ -62,6 +70,10 @@ class SizeField {
   explicit SizeField(double h);
   // Clustered field round the clipped shock runs and the body outline.
   SizeField(const SizeParams& p, const std::vector<ShockRun>& shock, const std::vector<scene::Vec2>& body_polyline);
+  // Adapted field: the lattice's finite, positive field "h" times `scale`
+  // (lattice units to scene coordinates), clamped and limited by the body rule.
+  SizeField(const SizeParams& p, std::shared_ptr<const scene::Lattice> h_lattice, double scale,
+            const std::vector<scene::Vec2>& body_polyline);
   double operator()(scene::Vec2 p) const;
   // Whether p lies in the fine band (d <= w of the nearest shock point).
   bool in_band(scene::Vec2 p) const;
@@ -69,9 +81,14 @@ class SizeField {
   const SizeParams& params() const { return p_; }
 
  private:
+  double lattice_h(scene::Vec2 p) const;
+
   bool uniform_ = true;
   SizeParams p_;
   SegmentIndex shock_, body_;
+  std::shared_ptr<const scene::Lattice> lattice_;  // adapted fields only
+  const std::vector<double>* lattice_values_ = nullptr;  // its field "h"
+  double lattice_scale_ = 1.0;
 };
 
 // Estimated number of cells sum(dA / h^2) over the region, on a fine lattice.

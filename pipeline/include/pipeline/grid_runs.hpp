@@ -6,6 +6,8 @@
 #include <functional>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +23,9 @@ struct ShockInput {
   std::string fingerprint;  // clustered grids are remade when it changes
   std::string shock_csv;
   bool has_shock = false;
+  // Per level, a size field meshed instead of the band round shock_csv
+  // (predictors that size grids themselves: Prediction::size_fields).
+  std::vector<std::pair<double, std::string>> size_fields;
 };
 
 class GridRunner {

@@ -7,9 +7,13 @@
 //   correlation theta-beta-Mach for attached wedges (exact), Billig's
 //               cylinder shock for other bodies (an empirical approximation)
 //   coarse_cfd  a coarse uniform CFD run to steady state, located by shockfit
+//   adapt       the same coarse run, and a size field per level from the
+//               Hessian of its density: grids adapted as a CFD engineer
+//               would, instead of a band round a curve
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -34,9 +38,14 @@ struct Prediction {
   double standoff_ci = std::numeric_limits<double>::quiet_NaN();
   double cpu_seconds = 0, wall_seconds = 0;
   std::string shock_csv;     // the curve as written for meshgen
+  // Predictors that size grids themselves (adapt): per family level, a
+  // size field .vti (field "h", body lengths) meshed instead of the band
+  // round the curve.
+  std::vector<std::pair<double, std::string>> size_fields;
   std::string fingerprint;   // changes whenever the prediction would
   nlohmann::json details = nlohmann::json::object();  // predictor-specific figures
-  // `predictor`, `shock`, angle or standoff with its interval, `cpu_seconds`, details.
+  // `predictor`, `shock`, angle or standoff with its interval, `cpu_seconds`,
+  // `size_fields` (level and path; empty for band predictors), details.
   nlohmann::json summary() const;
 };
 

@@ -22,4 +22,12 @@ class CoarseCfdPredictor final : public Predictor {
   Prediction predict(const PredictContext& cx) const override;
 };
 
+// The coarse_cfd run, then one size field per level from the Hessian of its
+// density (hessian_size.hpp); the coarse run's CPU and the fields' are its cost.
+class AdaptPredictor final : public Predictor {
+ public:
+  std::string name() const override { return "adapt"; }
+  Prediction predict(const PredictContext& cx) const override;
+};
+
 }  // namespace pipeline

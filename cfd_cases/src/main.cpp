@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
     scene::StagedDir staged(out);
     cfd::CaseResult r;
     try {
-      r = cfd::run_case(s, mesh_dir, staged.path(), o);
+      r = cfd::run_case_with_fallback(s, mesh_dir, staged.path(), o);
       scene::write_vti(cfd::resample_to_lattice(s, r.case_dir, nx, lattice_ny(s, nx, ny)),
                        r.case_dir + "/lattice.vti");
     } catch (const scene::RunError& e) {

@@ -68,6 +68,12 @@ std::string diagnose(int rc, const std::string& log_path) {
 [[noreturn]] void fail_run(const std::string& what, const std::string& log) {
   throw scene::RunError(what + "; see " + log + ":" + log_tail(log));
 }
+
+// A divergence is thrown as Diverged, so that a caller may restart.
+[[noreturn]] void fail_diverged(const std::string& what, const std::string& log, double cpu, double wall,
+                                long steps) {
+  throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps);
+}
 }  // namespace
 
 nlohmann::json CaseResult::summary() const {
@@ -91,6 +97,7 @@ nlohmann::json CaseResult::summary() const {
   j["np"] = np;
   j["case_dir"] = case_dir;
   j["history_csv"] = history_csv;
+  j["fallback"] = fallback.empty() ? nlohmann::json(nullptr) : nlohmann::json(fallback);
   return j;
 }
 
@@ -166,7 +173,8 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
     if (log.diverged()) {
       solver.terminate();
       solver.wait();
-      fail_run("the solution diverged (" + log.divergence() + ")", solver.log_path());
+      fail_diverged("the solution diverged (" + log.divergence() + ")", solver.log_path(), solver.cpu_seconds(),
+                    seconds_since(t0), log.steps());
     }
     for (const TimeDir& t : reader.times_after(processed)) {
       // A written time is complete once the solver has logged a later step
@@ -178,7 +186,10 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
       } catch (const scene::RunError& e) {
         solver.terminate();
         solver.wait();
-        fail_run(e.what(), solver.log_path());
+        const std::string why = e.what();
+        if (why.find("diverged") != std::string::npos)
+          fail_diverged(why, solver.log_path(), solver.cpu_seconds(), seconds_since(t0), log.steps());
+        fail_run(why, solver.log_path());
       }
       if (prev) {
         HistoryRow row = compare(*prev, snap, reader.parts(), f.rho(), norm_time);
@@ -210,7 +221,12 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.cpu_seconds += solver.cpu_seconds();
   // Ready for a rerun by hand (Allrun) from the latest time.
   set_control(cdir, "stopAt", "endTime");
-  if (rc != 0 && !stop_requested) fail_run(diagnose(rc, solver.log_path()), solver.log_path());
+  if (rc != 0 && !stop_requested) {
+    const std::string why = diagnose(rc, solver.log_path());
+    if (why.find("diverged") != std::string::npos)
+      fail_diverged(why, solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
+    fail_run(why, solver.log_path());
+  }
   progress.finish(r.steady_state_reached ? rule.why() : "not steady; " + rule.why());
   if (user_stop) throw scene::RunError("interrupted; the case is kept in " + cdir);
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "reconstructPar", {"-latestTime"}).cpu_seconds;

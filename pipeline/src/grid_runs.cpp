@@ -138,7 +138,7 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
   cfd::CaseOptions co;
   co.np = np_;
   const scene::CpuStopwatch cpu;
-  const auto c = cfd::run_case(s_, cache_.dir(mstage), cache_.dir(cstage), co);
+  const auto c = cfd::run_case_with_fallback(s_, cache_.dir(mstage), cache_.dir(cstage), co);
   const double solver_cpu = cpu.seconds();
   check_interrupt("cfd " + name);
   const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx, s_.granular.lattice_ny);
@@ -210,6 +210,8 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.steps = csum.value("steps", 0L);
   run.flow_throughs = number_or_nan(csum, "flow_throughs");
   run.steady = csum.value("steady_state_reached", false);
+  if (csum.contains("fallback") && csum["fallback"].is_string())
+    run.note = "diverged; restarted with " + csum["fallback"].get<std::string>();
   run.shock = fsum.value("shock", "none");
   run.value = number_or_nan(fsum, "shock_value");
   run.value_ci = number_or_nan(fsum, "shock_value_ci");

@@ -23,6 +23,7 @@ CfdParams parse_cfd(Section& s) {
   p.min_time = s.number("min_time", p.min_time, non_negative());
   p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));
   p.start = s.string("start", p.start, {"auto", "freestream", "rest"});
+  p.fallback = s.boolean("fallback", p.fallback);
   if (p.write_interval > p.end_time) s.fail("write_interval", "must not exceed end_time");
   if (p.end_time / p.write_interval > kMaxWrites)
     s.fail("write_interval", "end_time / write_interval must not exceed " + std::to_string(static_cast<int>(kMaxWrites)) +
@@ -44,6 +45,7 @@ void emit_cfd(YAML::Emitter& e, const CfdParams& p) {
   emit_kv(e, "min_time", p.min_time);
   emit_kv(e, "steady_checks", p.steady_checks);
   emit_kv(e, "start", p.start);
+  emit_kv(e, "fallback", p.fallback);
   e << YAML::EndMap;
 }
 

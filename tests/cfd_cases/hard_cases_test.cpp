@@ -9,6 +9,7 @@
 #include "meshgen/mesh.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/io.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -86,3 +87,39 @@ TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
 }
 
 }  // namespace
+
+TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
+  // The Apollo start above with the default Kurganov flux diverges; the
+  // fallback restarts it from the initial state with Tadmor, Minmod and half
+  // the Courant number, says so in the result and summary.json, and counts
+  // the failed attempt's CPU and steps. With cfd.fallback false the
+  // divergence is the run's end.
+  const std::string base = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
+  const std::string d = cfd_test::scratch_dir();
+  const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3}\n");
+  meshgen::MeshRequest req;
+  req.uniform = true;
+  req.h_min = 0.05;
+  meshgen::generate_mesh(s, req, d + "/mesh");
+  const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
+  EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos) << r.fallback;
+  EXPECT_NE(r.fallback.find("diverged"), std::string::npos) << r.fallback;
+  EXPECT_GT(r.sim_time, 0.0);
+  expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
+  const std::string summary = scene::read_file(d + "/case/summary.json");
+  EXPECT_NE(summary.find("\"fallback\": \"flux_scheme Tadmor"), std::string::npos) << summary;
+
+  const scene::Scene strict = scene::parse_scene(base + "cfd: {end_time: 3, fallback: false}\n");
+  EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}), cfd::Diverged);
+}
+
+TEST(HardCases, RobustSettingsAreTadmorMinmodAndHalfTheCourantNumber) {
+  scene::CfdParams p;
+  p.max_co = 0.4;
+  std::string what;
+  const scene::CfdParams r = cfd::robust_settings(p, what);
+  EXPECT_EQ(r.flux_scheme, "Tadmor");
+  EXPECT_EQ(r.limiter, "Minmod");
+  EXPECT_DOUBLE_EQ(r.max_co, 0.2);
+  EXPECT_EQ(what, "flux_scheme Tadmor, limiter Minmod, max_co 0.2");
+}

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/errors.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 
@@ -39,7 +40,20 @@ struct CaseResult {
   double final_force_change = 0.0;
   bool local_time_stepping = false;
   int np = 1;
+  // Empty, or the robust settings the run restarted with after the first
+  // attempt diverged, and why (its CPU, wall seconds and steps are included above).
+  std::string fallback;
   nlohmann::json summary() const;
+};
+
+// The solver diverged (floating-point exception, negative temperature, NaN
+// fields): what it had spent, for a restart to add to.
+class Diverged : public scene::RunError {
+ public:
+  Diverged(const std::string& what, double cpu, double wall, long solver_steps)
+      : scene::RunError(what), cpu_seconds(cpu), wall_seconds(wall), steps(solver_steps) {}
+  double cpu_seconds, wall_seconds;
+  long steps;
 };
 
 // Runs the scene on the mesh in mesh_dir/constant/polyMesh (patches inlet,
@@ -48,6 +62,15 @@ struct CaseResult {
 // failure (the case is kept for inspection), scene::InputError on a bad mesh.
 CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
                     const CaseOptions& o);
+
+// run_case, and when it diverges and the scene's cfd.fallback allows, once
+// more from the initial state with the robust settings (robust_settings):
+// Tadmor flux, Minmod limiter, half the Courant number. The result records
+// the fallback and counts both attempts' CPU and wall seconds.
+CaseResult run_case_with_fallback(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                                  const CaseOptions& o);
+// The scene's cfd settings made robust; `what` describes the change.
+scene::CfdParams robust_settings(const scene::CfdParams& p, std::string& what);
 
 // Resamples the latest time of case_dir onto an nx x ny lattice covering the
 // scene domain: fields rho, u, v, p, T, mach and inside_body (1 inside, 0

@@ -23,6 +23,10 @@ struct CfdParams {
   // Initial state: freestream | rest | auto (free stream for attached-shock
   // wedges, rest otherwise: an impulsive start behind a blunt body diverges).
   std::string start = "auto";
+  // On divergence, restart once from the initial state with the robust
+  // settings (Tadmor flux, Minmod limiter, half the Courant number),
+  // recorded in the case's summary as `fallback`.
+  bool fallback = true;
 };
 
 }  // namespace scene

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "foam_process.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
@@ -32,8 +34,9 @@ CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int n
     part_dirs_.push_back(case_dir);
   }
   for (const auto& d : part_dirs_) parts_.push_back(read_mesh_2d(d));
-  wedge_ = s.body && s.body->kind == scene::BodyKind::wedge;
-  if (wedge_) wedge_length_ = s.body->length;
+  const std::optional<double> ramp = s.body ? scene::straight_ramp_length(*s.body) : std::nullopt;
+  wedge_ = ramp.has_value();
+  if (wedge_) wedge_length_ = *ramp;
   p_inf_ = freestream(s).p;
 }
 

@@ -18,6 +18,7 @@
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
@@ -111,7 +112,7 @@ std::vector<Training> training_set(const CalibrateOptions& o,
   } else {
     for (const auto& path : o.scenes) {
       scene::Scene s = scene::load_scene(path);
-      if (!s.body || s.body->kind != scene::BodyKind::wedge)
+      if (!s.body || !scene::calibration_angle_deg(*s.body))
         throw scene::InputError(path + ": key 'body.kind': calibrate needs wedge scenes");
       out.push_back({s, path});
     }

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
 
 namespace pipeline {
@@ -39,8 +40,8 @@ std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths
   std::vector<WedgePoint> out;
   for (const auto& path : scene_paths) {
     const scene::Scene s = scene::load_scene(path);
-    if (s.body && s.body->kind == scene::BodyKind::wedge)
-      out.push_back({s.freestream.mach, s.body->angle_deg});
+    if (const auto angle_deg = s.body ? scene::calibration_angle_deg(*s.body) : std::nullopt)
+      out.push_back({s.freestream.mach, *angle_deg});
   }
   return out;
 }

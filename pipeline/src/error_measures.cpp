@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include "scene/body.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 
@@ -13,7 +13,6 @@ namespace pipeline {
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double polygon_area(const std::vector<scene::Vec2>& p) {
@@ -119,19 +118,17 @@ CaseErrors measure_case_errors(const scene::Scene& s, const std::string& case_di
   const Solution before = have_before ? read_solution(case_dir, times[times.size() - 2], mesh.cells()) : last;
   e.solutions_compared = have_before ? 2 : 1;
 
-  if (s.body->kind == scene::BodyKind::wedge) {
-    if (const auto beta = scene::oblique_shock_beta(mach, s.body->angle_deg * kDeg, gamma)) {
-      const double rho2 = inf.rho * scene::oblique_density_ratio(mach, *beta, gamma);
-      const double p2 = inf.p * scene::oblique_pressure_ratio(mach, *beta, gamma);
-      // The cut cells' shares are the same for every field and time: clip once.
-      const std::vector<double> fractions = behind_fractions(mesh, *beta);
-      auto l1 = [&](const Solution& sol, bool density) {
-        return density ? piecewise_l1(mesh, sol.rho, fractions, inf.rho, rho2, inf.rho)
-                       : piecewise_l1(mesh, sol.p, fractions, inf.p, p2, inf.p);
-      };
-      e.l1_density = from_pair(l1(last, true), l1(before, true), have_before);
-      e.l1_pressure = from_pair(l1(last, false), l1(before, false), have_before);
-    }
+  if (const auto beta = scene::attached_shock_beta(s)) {
+    const double rho2 = inf.rho * scene::oblique_density_ratio(mach, *beta, gamma);
+    const double p2 = inf.p * scene::oblique_pressure_ratio(mach, *beta, gamma);
+    // The cut cells' shares are the same for every field and time: clip once.
+    const std::vector<double> fractions = behind_fractions(mesh, *beta);
+    auto l1 = [&](const Solution& sol, bool density) {
+      return density ? piecewise_l1(mesh, sol.rho, fractions, inf.rho, rho2, inf.rho)
+                     : piecewise_l1(mesh, sol.p, fractions, inf.p, p2, inf.p);
+    };
+    e.l1_density = from_pair(l1(last, true), l1(before, true), have_before);
+    e.l1_pressure = from_pair(l1(last, false), l1(before, false), have_before);
   }
   e.pitot_ratio = scene::rayleigh_pitot_ratio(mach, gamma);
   const scene::Vec2 nose = scene::make_body(*s.body).nose;

@@ -138,18 +138,20 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
   // wedges that the report states.
-  const bool wedge = s.body->kind == scene::BodyKind::wedge;
+  const std::optional<double> angle_deg = scene::calibration_angle_deg(*s.body);
   std::string path = table_path;
   if (path.empty()) path = s.pipeline.calibration.empty() ? builtin_calibration_path() : s.pipeline.calibration;
   if (!fs::exists(path)) return "no calibration table at " + path + "; restitution left at its default";
   const auto t = read_calibration(path);
-  const auto e = interpolate_restitution(t, s.freestream.mach, wedge ? s.body->angle_deg : kNaN);
+  const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return "";
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
-                wedge ? "" : " (by Mach number alone: the table is calibrated on wedges, so this is an extrapolation)");
+                angle_deg ? ""
+                          : " (by Mach number alone: the table is calibrated on wedges, so this is "
+                            "an extrapolation)");
   return buf;
 }
 

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "granular/particle_budget.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
-#include "scene/gasdynamics.hpp"
 
 namespace granular {
 
@@ -25,7 +25,6 @@ constexpr double kBluntUpstreamMargin = 1.0;
 constexpr double kBluntSideMargin = 0.5;
 // The granular gas is gamma = 2 in the dilute limit (attachment test).
 constexpr double kGranularGamma = 2.0;
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Closest packing of disks: an inflow at or above it cannot exist; beyond
 // ~0.7 the fluid crystallises and Henderson's Z is meaningless.
 constexpr double kMaxInflowPacking = 0.6;
@@ -77,8 +76,7 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
 
   f.sim_domain = f.domain;
   const bool attached_wedge =
-      s.body->kind == scene::BodyKind::wedge &&
-      scene::oblique_shock_beta(f.mach, s.body->angle_deg * kDegToRad, kGranularGamma).has_value();
+      scene::attached_shock_beta(*s.body, f.mach, kGranularGamma).has_value();
   if (!attached_wedge && !s.domain_override) {
     double ylo = 0, yhi = 0;
     for (const scene::Vec2 q : f.body.polyline) {

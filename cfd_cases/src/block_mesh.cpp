@@ -11,12 +11,13 @@
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using scene::kDeg;
 // The blockMesh domain ends where the wedge face does; a scene domain
 // override must agree to this relative tolerance.
 constexpr double kOutflowMatch = 1e-6;

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -13,6 +12,7 @@
 #include "scene/errors.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 namespace fs = std::filesystem;
@@ -81,7 +81,7 @@ Snapshot CaseReader::read(const TimeDir& t) const {
       }
     }
   }
-  s.wall_pressure_ratio = wedge_ && wall_a > 0 ? wall_pa / wall_a / p_inf_ : std::numeric_limits<double>::quiet_NaN();
+  s.wall_pressure_ratio = wedge_ && wall_a > 0 ? wall_pa / wall_a / p_inf_ : scene::kNaN;
   return s;
 }
 

@@ -5,7 +5,6 @@
 #include <csignal>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <thread>
 
@@ -15,6 +14,7 @@
 #include "case_setup.hpp"
 #include "foam_process.hpp"
 #include "log_follower.hpp"
+#include "scene/units.hpp"
 #include "steady_state.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
@@ -138,7 +138,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.flow_through_time = cs.flow_through;
   r.local_time_stepping = cs.lts;
   r.np = cs.np;
-  r.wall_pressure_ratio = std::numeric_limits<double>::quiet_NaN();
+  r.wall_pressure_ratio = scene::kNaN;
 
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;
   const CaseReader reader(s, cdir, cs.np);

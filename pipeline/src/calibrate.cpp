@@ -4,8 +4,6 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <limits>
-#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -24,14 +22,15 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kDeg;
+using scene::kNaN;
 // The calibration target: the ideal diatomic gas of the CFD.
 constexpr double kTargetGamma = 1.4;
 

@@ -1,16 +1,16 @@
 #include "pipeline/calibration_training.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
 #include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Two wedges are the same case when Mach and angle agree to this (the
 // values are written by hand to at most a few decimals).
 constexpr double kSameWedgeTolerance = 1e-9;

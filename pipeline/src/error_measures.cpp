@@ -7,13 +7,14 @@
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 double polygon_area(const std::vector<scene::Vec2>& p) {
   double a = 0;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "cfd/run_case.hpp"
 #include "meshgen/mesh.hpp"
@@ -14,13 +13,14 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
 

@@ -1,7 +1,6 @@
 #include "pipeline/predictor.hpp"
 
 #include <cmath>
-#include <limits>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -43,7 +42,7 @@ nlohmann::json Prediction::summary() const {
 
 void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
                        const std::vector<double>& half_width) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  using scene::kNaN;
   std::vector<scene::ShockCsvRow> rows;
   for (std::size_t i = 0; i < curve.size(); ++i) {
     scene::ShockCsvRow r;
@@ -68,6 +67,7 @@ std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
 }  // namespace pipeline
 
 #include "pipeline/predictors.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 

@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "pipeline/stage_cache.hpp"
 #include "scene/body.hpp"
@@ -15,11 +14,12 @@
 #include "scene/cpu_clock.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Points along the predicted curve.
 constexpr int kCurvePoints = 40;
 // Billig's fits reproduce measured cylinder standoffs within a few percent;

@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <limits>
-#include <numbers>
 
 #include "granular/flow_run.hpp"
 #include "pipeline/calibration.hpp"
@@ -27,6 +25,7 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
@@ -35,8 +34,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
+using scene::kNaN;
 // Digits kept of a calibrated restitution: the resolved scene echoes it
 // exactly, so rerunning the resolved scene reproduces the run bit for bit.
 constexpr double kRestitutionQuantum = 1e-6;

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include "scene/body_traits.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 std::string run_name(const VerdictRun& r) {
   char buf[64];

@@ -1,17 +1,17 @@
 #include "scene/body_traits.hpp"
 
 #include <algorithm>
-#include <numbers>
 
 #include "scene/body.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace scene {
 
 std::optional<double> attached_shock_beta(const BodySpec& b, double mach, double gamma) {
   switch (b.kind) {
     case BodyKind::wedge:
-      return oblique_shock_beta(mach, b.angle_deg * std::numbers::pi / 180.0, gamma);
+      return oblique_shock_beta(mach, b.angle_deg * kDeg, gamma);
     case BodyKind::disc:
     case BodyKind::apollo:
     case BodyKind::polygon:

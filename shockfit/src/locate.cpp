@@ -4,10 +4,10 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numbers>
 
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 #include "shockfit/profile.hpp"
 #include "shockfit/shock_line.hpp"
 #include "shockfit/two_line_fit.hpp"
@@ -134,7 +134,7 @@ bool blunt_nose(const scene::BodyGeometry& g) {
     if (!(P[i] == g.nose)) continue;
     const scene::Vec2 up = P[(i + n - 1) % n] - g.nose, lo = P[(i + 1) % n] - g.nose;
     const double a_up = std::atan2(std::abs(up.y), up.x), a_lo = std::atan2(std::abs(lo.y), lo.x);
-    return std::max(a_up, a_lo) * 180.0 / std::numbers::pi > kBluntNoseDeg;
+    return std::max(a_up, a_lo) / scene::kDeg > kBluntNoseDeg;
   }
   return false;
 }

@@ -1,19 +1,19 @@
 #include "granular/flow_setup.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include "granular/particle_budget.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 
 namespace granular {
 
 namespace {
 
 // Disk area in units of d^2 (radius 1/2).
-constexpr double kDiskArea = std::numbers::pi / 4.0;
+using scene::kDiskArea;
 // Sub-cells per side when measuring the fluid (non-body) area of the domain.
 constexpr int kAreaSamples = 256;
 // Room added upstream of (and above) the scene domain for blunt bodies, in
@@ -40,11 +40,9 @@ double fluid_area_scene(const scene::BodyGeometry& g, const scene::Domain& d) {
 
 }  // namespace
 
-double henderson_z(double nu) { return (1.0 + nu * nu / 8.0) / ((1.0 - nu) * (1.0 - nu)); }
-
 double sound_speed(double nu, double temperature) {
   const double z = henderson_z(nu);
-  const double dz = (nu / 4.0) / ((1.0 - nu) * (1.0 - nu)) + 2.0 * (1.0 + nu * nu / 8.0) / std::pow(1.0 - nu, 3);
+  const double dz = henderson_dz(nu);
   return std::sqrt(temperature * (z + nu * dz + z * z));
 }
 

@@ -7,7 +7,6 @@
 //   correlation theta-beta-Mach for attached wedges (exact), Billig's
 //               cylinder shock for other bodies (an empirical approximation)
 //   coarse_cfd  a coarse uniform CFD run to steady state, located by shockfit
-#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace pipeline {
@@ -28,10 +28,10 @@ struct Prediction {
   ShockKind kind = ShockKind::none;
   std::vector<scene::Vec2> curve;  // accepted shock points in order (scene coordinates)
   std::vector<double> half_width;  // 95% half-width along the shock normal per point (body lengths)
-  double shock_angle_deg = std::numeric_limits<double>::quiet_NaN();
-  double shock_angle_ci_deg = std::numeric_limits<double>::quiet_NaN();
-  double standoff = std::numeric_limits<double>::quiet_NaN();  // body lengths
-  double standoff_ci = std::numeric_limits<double>::quiet_NaN();
+  double shock_angle_deg = scene::kNaN;
+  double shock_angle_ci_deg = scene::kNaN;
+  double standoff = scene::kNaN;  // body lengths
+  double standoff_ci = scene::kNaN;
   double cpu_seconds = 0, wall_seconds = 0;
   std::string shock_csv;     // the curve as written for meshgen
   std::string fingerprint;   // changes whenever the prediction would

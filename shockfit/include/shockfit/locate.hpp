@@ -1,17 +1,17 @@
 #pragma once
 // The shock locator: two-line fits along body normals (docs/shockfit.md).
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace shockfit {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 struct StationFit {
   int station = 0;

@@ -60,8 +60,4 @@ ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& fiel
 void write_outputs(const scene::Scene& s, const scene::Lattice& fields, const ShockResult& r,
                    const std::string& out_dir);
 
-// shock.csv back, columns by name. scene::InputError on a missing, empty or
-// malformed file.
-std::vector<StationFit> read_shock_csv(const std::string& path);
-
 }  // namespace shockfit

@@ -39,13 +39,13 @@ scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
 }
 
 double shock_value(const shockfit::ShockResult& r) {
-  if (r.shock == "attached") return r.shock_angle_deg;
-  if (r.shock == "detached") return r.standoff;
+  if (r.shock == scene::ShockKind::attached) return r.shock_angle_deg;
+  if (r.shock == scene::ShockKind::detached) return r.standoff;
   return kNaN;
 }
 double shock_ci(const shockfit::ShockResult& r) {
-  if (r.shock == "attached") return r.shock_angle_ci_deg;
-  if (r.shock == "detached") return r.standoff_ci;
+  if (r.shock == scene::ShockKind::attached) return r.shock_angle_ci_deg;
+  if (r.shock == scene::ShockKind::detached) return r.standoff_ci;
   return kNaN;
 }
 

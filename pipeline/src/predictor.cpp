@@ -8,26 +8,11 @@
 
 namespace pipeline {
 
-std::string to_string(ShockKind k) {
-  switch (k) {
-    case ShockKind::attached: return "attached";
-    case ShockKind::detached: return "detached";
-    case ShockKind::none: return "none";
-  }
-  return "none";
-}
-
-ShockKind shock_kind_from(const std::string& text) {
-  if (text == "attached") return ShockKind::attached;
-  if (text == "detached") return ShockKind::detached;
-  return ShockKind::none;
-}
-
 nlohmann::json Prediction::summary() const {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["predictor"] = predictor;
-  j["shock"] = to_string(kind);
+  j["shock"] = scene::to_string(kind);
   j["shock_angle_deg"] = num(shock_angle_deg);
   j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
   j["standoff"] = num(standoff);

@@ -72,7 +72,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   p.predictor = name();
   Curve curve;
   if (const auto beta = scene::attached_shock_beta(s)) {
-    p.kind = ShockKind::attached;
+    p.kind = scene::ShockKind::attached;
     p.shock_angle_deg = *beta / kDeg;
     p.shock_angle_ci_deg = 0.0;
     curve = oblique_line(d, *beta);
@@ -83,7 +83,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     const double standoff = scene::billig_standoff_cylinder(mach) * radius;
     const double rel = exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
     const scene::Vec2 nose = scene::make_body(*s.body).nose;
-    p.kind = ShockKind::detached;
+    p.kind = scene::ShockKind::detached;
     p.standoff = standoff / scene::body_length(*s.body);
     p.standoff_ci = rel * p.standoff;
     curve = billig_shape(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);

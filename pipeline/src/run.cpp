@@ -229,7 +229,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");
-  const ShockInput shock{pred.fingerprint, pred.shock_csv, pred.kind != ShockKind::none && pred.curve.size() >= 2};
+  const ShockInput shock{pred.fingerprint, pred.shock_csv,
+                         pred.kind != scene::ShockKind::none && pred.curve.size() >= 2};
 
   // Both families, coarse to fine.
   const PrimaryError primary = primary_error_for(s);

@@ -14,6 +14,8 @@
 
 namespace shockfit {
 
+using scene::ShockKind;
+
 namespace {
 
 constexpr double kCi95 = 1.959963984540054;  // two-sided 95% normal quantile
@@ -141,7 +143,9 @@ bool blunt_nose(const scene::BodyGeometry& g) {
 
 // Uncertainty that decides between fields: the interval of the reported number.
 double uncertainty(const ShockResult& r) {
-  const double u = r.shock == "attached" ? r.shock_angle_ci_deg : r.shock == "detached" ? r.standoff_ci : kNaN;
+  const double u = r.shock == ShockKind::attached   ? r.shock_angle_ci_deg
+                   : r.shock == ShockKind::detached ? r.standoff_ci
+                                                    : kNaN;
   return std::isfinite(u) ? u : std::numeric_limits<double>::infinity();
 }
 
@@ -154,7 +158,7 @@ int ShockResult::accepted_count() const {
 nlohmann::json ShockResult::summary() const {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
-  j["shock"] = shock;
+  j["shock"] = scene::to_string(shock);
   j["field"] = field;
   j["shock_angle_deg"] = num(shock_angle_deg);
   j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
@@ -166,9 +170,10 @@ nlohmann::json ShockResult::summary() const {
   j["standoff_stagnation"] = num(standoff_stagnation);
   j["stations"] = static_cast<int>(stations.size());
   j["stations_accepted"] = accepted_count();
-  j["shock_line"] = shock == "attached" ? nlohmann::json{{"point", {line_point.x, line_point.y}},
-                                                          {"direction", {line_dir.x, line_dir.y}}}
-                                        : nlohmann::json(nullptr);
+  j["shock_line"] = shock == ShockKind::attached
+                        ? nlohmann::json{{"point", {line_point.x, line_point.y}},
+                                         {"direction", {line_dir.x, line_dir.y}}}
+                        : nlohmann::json(nullptr);
   j["shock_vertex_x"] = num(vertex_x);
   j["shock_curvature_radius"] = num(curvature_radius);
   j["field_candidates"] = candidates;
@@ -268,7 +273,7 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
   };
 
   if (detached) {
-    r.shock = "detached";
+    r.shock = ShockKind::detached;
     r.standoff_stagnation = r.stagnation.distance / L;
     r.standoff = r.standoff_stagnation;
     r.standoff_ci = r.stagnation.ci / L;
@@ -287,7 +292,7 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
     }
   } else if (blunt) {
     // No shock can attach to a blunt nose: without a standoff, no shock.
-    r.shock = "none";
+    r.shock = ShockKind::none;
     for (StationFit& f : r.stations) f.accepted = false;
   } else {
     // Attached (or none): the shock line through the accepted points. The
@@ -326,7 +331,7 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
       sig.push_back(f.ci / kCi95);
     }
     if (good.size() >= static_cast<std::size_t>(kMinAccepted)) {
-      r.shock = "attached";
+      r.shock = ShockKind::attached;
       const LineFit lf = fit_orthogonal_line(good);
       r.shock_angle_deg = lf.angle_deg;
       r.line_point = lf.point;
@@ -337,7 +342,7 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
       r.shock_angle_hi_deg = iv.hi;
       r.shock_angle_ci_deg = 0.5 * (iv.hi - iv.lo);
     } else {
-      r.shock = "none";
+      r.shock = ShockKind::none;
       for (StationFit& f : r.stations) f.accepted = false;
     }
   }
@@ -346,10 +351,16 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
   std::vector<int> acc;
   for (const StationFit& f : r.stations)
     if (f.accepted && !is_nose_station(f)) acc.push_back(f.station);
-  if (r.shock == "detached") r.plot_station = r.stations.empty() ? -1 : 0;
-  else if (!acc.empty()) r.plot_station = acc[acc.size() / 2];
-  else r.plot_station = r.stations.empty() ? -1 : static_cast<int>(r.stations.size() / 2);
-  r.candidates[field] = {{"shock", r.shock}, {"uncertainty", std::isfinite(uncertainty(r)) ? nlohmann::json(uncertainty(r)) : nlohmann::json(nullptr)}};
+  if (r.shock == ShockKind::detached)
+    r.plot_station = r.stations.empty() ? -1 : 0;
+  else if (!acc.empty())
+    r.plot_station = acc[acc.size() / 2];
+  else
+    r.plot_station = r.stations.empty() ? -1 : static_cast<int>(r.stations.size() / 2);
+  r.candidates[field] = {
+      {"shock", scene::to_string(r.shock)},
+      {"uncertainty",
+       std::isfinite(uncertainty(r)) ? nlohmann::json(uncertainty(r)) : nlohmann::json(nullptr)}};
   return r;
 }
 
@@ -375,7 +386,9 @@ ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
   if (cand.size() == 2) {
     ShockResult joint = locate_shock_joint(s, lat, dens, kVelocityField);
     for (const ShockResult& c : cand) joint.candidates.update(c.candidates);
-    if (joint.shock != "none" || (cand[0].shock == "none" && cand[1].shock == "none")) return joint;
+    if (joint.shock != ShockKind::none ||
+        (cand[0].shock == ShockKind::none && cand[1].shock == ShockKind::none))
+      return joint;
   }
   if (cand.empty())
     throw scene::InputError("lattice has none of the fields shockfit can use (volume_fraction, rho, number_density, v)");
@@ -386,8 +399,10 @@ ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
   for (std::size_t i = 1; i < cand.size(); ++i) {
     const ShockResult& a = cand[best];
     const ShockResult& b = cand[i];
-    if (a.shock == "none" && b.shock != "none") best = i;
-    else if (a.shock != "none" && b.shock == a.shock && uncertainty(b) < uncertainty(a)) best = i;
+    if (a.shock == ShockKind::none && b.shock != ShockKind::none)
+      best = i;
+    else if (a.shock != ShockKind::none && b.shock == a.shock && uncertainty(b) < uncertainty(a))
+      best = i;
   }
   ShockResult r = cand[best];
   for (const ShockResult& c : cand) r.candidates.update(c.candidates);

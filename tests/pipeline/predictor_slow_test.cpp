@@ -25,7 +25,7 @@ TEST(PredictorSlow, CoarseCfdLocatesTheWedgeShock) {
   const fs::path dir = fs::temp_directory_path() / "shockgrain_predictor_coarse_cfd";
   fs::remove_all(dir);
   const auto p = pipeline::predict_shock(s, "coarse_cfd", dir.string(), 1);
-  ASSERT_EQ(p.kind, pipeline::ShockKind::attached);
+  ASSERT_EQ(p.kind, scene::ShockKind::attached);
   constexpr double kCoarseGridTolDeg = 1.5;  // ~320 cells: the shock spans 3-4 cells of h = 0.06
   EXPECT_NEAR(p.shock_angle_deg, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4) / kDeg, kCoarseGridTolDeg);
   EXPECT_GT(p.cpu_seconds, 0.0);

@@ -14,18 +14,15 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.hpp"
+#include "scene/shock_kind.hpp"
 #include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace pipeline {
 
-enum class ShockKind { attached, detached, none };
-std::string to_string(ShockKind k);
-ShockKind shock_kind_from(const std::string& text);  // attached | detached | anything else: none
-
 struct Prediction {
   std::string predictor;
-  ShockKind kind = ShockKind::none;
+  scene::ShockKind kind = scene::ShockKind::none;
   std::vector<scene::Vec2> curve;  // accepted shock points in order (scene coordinates)
   std::vector<double> half_width;  // 95% half-width along the shock normal per point (body lengths)
   double shock_angle_deg = scene::kNaN;

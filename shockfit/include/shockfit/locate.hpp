@@ -6,6 +6,7 @@
 
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scene/shock_kind.hpp"
 #include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
@@ -23,7 +24,7 @@ struct StationFit {
 };
 
 struct ShockResult {
-  std::string shock = "none";  // attached | detached | none
+  scene::ShockKind shock = scene::ShockKind::none;
   std::string field;           // lattice field used
   double shock_angle_deg = kNaN, shock_angle_ci_deg = kNaN;  // NaN when n/a
   double standoff = kNaN, standoff_ci = kNaN;              // body lengths

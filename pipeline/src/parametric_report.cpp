@@ -13,6 +13,7 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
+#include "scene/shock_kind.hpp"
 #include "scene/units.hpp"
 
 namespace pipeline {
@@ -176,7 +177,7 @@ std::string theta_beta_panel(const ParametricPanel& panel, const Json& rows,
         s.x.push_back(d(r, "theta_deg"));
         s.y.push_back(d(r, "beta_deg"));
         s.yerr.push_back(d(r, "beta_ci_deg"));
-      } else if (r.value("shock", "") == "detached") {
+      } else if (scene::shock_kind_from(r.value("shock", "")) == scene::ShockKind::detached) {
         detached.x.push_back(d(r, "theta_deg"));
         detached.y.push_back(kDetachedPlotBeta);
         if (!std::isfinite(first_detached)) first_detached = d(r, "theta_deg");

@@ -3,17 +3,17 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include "pipeline/predictor.hpp"
 #include "pipeline/run.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 }  // namespace
 

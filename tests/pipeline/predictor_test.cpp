@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include <nlohmann/json.hpp>
 
@@ -17,11 +16,12 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 

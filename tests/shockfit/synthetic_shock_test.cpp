@@ -8,12 +8,13 @@
 
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 #include "synthetic.hpp"
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 
 scene::Scene wedge_scene(double mach, double angle_deg) {
   return scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: " + std::to_string(angle_deg) +

@@ -27,7 +27,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <numbers>
 #include <numeric>
 #include <random>
 #include <string>
@@ -35,6 +34,7 @@
 
 #include "granular/box_setup.hpp"
 #include "granular/engine.hpp"
+#include "scene/units.hpp"
 
 namespace {
 
@@ -122,7 +122,7 @@ Run run_once(const Size& size, double nu, double min_cell, granular::LookAhead l
              std::uint64_t seed) {
   granular::BoxSetup b;
   b.particles = size.n;
-  b.width = b.height = std::sqrt(static_cast<double>(size.n) * std::numbers::pi / 4.0 / nu);
+  b.width = b.height = std::sqrt(static_cast<double>(size.n) * scene::kDiskArea / nu);
   b.packing_fraction = nu;
   b.seed = seed;
   b.min_cell = min_cell;

@@ -15,6 +15,7 @@
 
 #include "meshgen/mesh.hpp"
 #include "scene/body.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
 
@@ -28,9 +29,8 @@ std::vector<scene::Vec2> predicted_shock(const scene::Scene& s) {
   const double m = s.freestream.mach;
   std::vector<scene::Vec2> out;
   constexpr int kPoints = 40;
-  if (s.body->kind == scene::BodyKind::wedge) {
-    const double th = s.body->angle_deg * std::acos(-1.0) / 180.0;
-    const double beta = *scene::oblique_shock_beta(m, th, s.freestream.gamma);
+  if (const auto attached = scene::attached_shock_beta(s)) {
+    const double beta = *attached;
     for (int i = 0; i < kPoints; ++i) {
       const double x = 1.2 * d.xmax * i / (kPoints - 1);
       out.push_back({x, x * std::tan(beta)});

@@ -7,15 +7,17 @@
 #include "case_setup.hpp"
 #include "cfd/run_case.hpp"
 #include "foam_process.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using scene::kDeg;
 // The blockMesh domain ends where the wedge face does; a scene domain
 // override must agree to this relative tolerance.
 constexpr double kOutflowMatch = 1e-6;
@@ -44,7 +46,7 @@ writeCompression off;
 }  // namespace
 
 void make_wedge_block_mesh(const scene::Scene& s, long cells, const std::string& out_dir, double grading_y) {
-  if (!s.body || s.body->kind != scene::BodyKind::wedge)
+  if (!s.body || !scene::straight_ramp_length(*s.body))
     throw scene::InputError(s.source_file + ": cfd blockmesh makes wedge grids only (body.kind: wedge)");
   const double th = s.body->angle_deg * kDeg;
   if (!scene::oblique_shock_beta(s.freestream.mach, th, s.freestream.gamma))

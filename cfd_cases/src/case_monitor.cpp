@@ -2,15 +2,17 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "foam_process.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 namespace fs = std::filesystem;
@@ -32,8 +34,9 @@ CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int n
     part_dirs_.push_back(case_dir);
   }
   for (const auto& d : part_dirs_) parts_.push_back(read_mesh_2d(d));
-  wedge_ = s.body && s.body->kind == scene::BodyKind::wedge;
-  if (wedge_) wedge_length_ = s.body->length;
+  const std::optional<double> ramp = s.body ? scene::straight_ramp_length(*s.body) : std::nullopt;
+  wedge_ = ramp.has_value();
+  if (wedge_) wedge_length_ = *ramp;
   p_inf_ = freestream(s).p;
 }
 
@@ -78,7 +81,7 @@ Snapshot CaseReader::read(const TimeDir& t) const {
       }
     }
   }
-  s.wall_pressure_ratio = wedge_ && wall_a > 0 ? wall_pa / wall_a / p_inf_ : std::numeric_limits<double>::quiet_NaN();
+  s.wall_pressure_ratio = wedge_ && wall_a > 0 ? wall_pa / wall_a / p_inf_ : scene::kNaN;
   return s;
 }
 

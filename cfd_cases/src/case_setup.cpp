@@ -14,8 +14,8 @@
 
 #include "cfd/run_case.hpp"
 #include "foam_process.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
-#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 
 #ifndef CFD_TEMPLATE_SOURCE_DIR
@@ -31,7 +31,6 @@ namespace {
 // OpenFOAM's universal gas constant RR = 1e3 N_A k (J/(kmol K)) in v1912's
 // thermodynamicConstants; molWeight = RR gamma gives R = 1/gamma.
 constexpr double kFoamRR = 8314.47;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 // OpenFOAM re-reads a modified controlDict only if its time stamp moved by
 // more than fileModificationSkew (10 s in v1912's etc/controlDict). Dating
@@ -68,8 +67,7 @@ void backdate(const std::string& path) {
 
 namespace {
 bool attached_wedge(const scene::Scene& s) {
-  const bool wedge = s.body && s.body->kind == scene::BodyKind::wedge;
-  return wedge && scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, s.freestream.gamma);
+  return scene::attached_shock_beta(s).has_value();
 }
 }  // namespace
 

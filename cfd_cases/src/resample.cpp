@@ -1,12 +1,12 @@
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "case_setup.hpp"
 #include "cfd/foam_reader.hpp"
 #include "cfd/run_case.hpp"
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 
@@ -34,13 +34,12 @@ scene::Lattice resample_to_lattice(const scene::Scene& s, const std::string& cas
   const auto U = read_vector_field(tdir + "/U", m.cells());
 
   scene::Lattice lat = scene::domain_lattice(scene::scene_domain(s), nx, ny);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto& f_rho = lat.add("rho", nan);
-  auto& f_u = lat.add("u", nan);
-  auto& f_v = lat.add("v", nan);
-  auto& f_p = lat.add("p", nan);
-  auto& f_T = lat.add("T", nan);
-  auto& f_mach = lat.add("mach", nan);
+  auto& f_rho = lat.add("rho", scene::kNaN);
+  auto& f_u = lat.add("u", scene::kNaN);
+  auto& f_v = lat.add("v", scene::kNaN);
+  auto& f_p = lat.add("p", scene::kNaN);
+  auto& f_T = lat.add("T", scene::kNaN);
+  auto& f_mach = lat.add("mach", scene::kNaN);
   auto& inside = lat.add("inside_body", 0.0);
   const scene::BodyGeometry g = scene::make_body(*s.body);
   for (int j = 0; j < ny; ++j)

@@ -5,7 +5,6 @@
 #include <csignal>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <optional>
 #include <thread>
 
@@ -15,6 +14,7 @@
 #include "case_setup.hpp"
 #include "foam_process.hpp"
 #include "log_follower.hpp"
+#include "scene/units.hpp"
 #include "steady_state.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
@@ -74,6 +74,14 @@ std::string diagnose(int rc, const std::string& log_path) {
                                 long steps) {
   throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps);
 }
+
+// A failure that is a divergence (the messages of diagnose and of the case
+// reader say so) is thrown as Diverged, any other as RunError.
+[[noreturn]] void fail_solver(const std::string& why, const std::string& log, double cpu, double wall,
+                              long steps) {
+  if (why.find("diverged") != std::string::npos) fail_diverged(why, log, cpu, wall, steps);
+  fail_run(why, log);
+}
 }  // namespace
 
 nlohmann::json CaseResult::summary() const {
@@ -101,9 +109,15 @@ nlohmann::json CaseResult::summary() const {
   return j;
 }
 
-CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
-                    const CaseOptions& o) {
-  if (!s.body) throw scene::InputError(s.source_file + ": cfd needs a scene with a body");
+namespace {
+
+// The mesh and case directories, absolute. InputError for a mesh folder
+// without a polyMesh or one inside the case folder (which is replaced).
+struct CasePaths {
+  std::string mesh, case_dir;
+};
+
+CasePaths checked_paths(const std::string& mesh_dir, const std::string& case_dir) {
   if (!fs::exists(fs::path(mesh_dir) / "constant/polyMesh/faces"))
     throw scene::InputError(mesh_dir + ": no constant/polyMesh (run meshgen or cfd blockmesh first)");
   const fs::path mesh_abs = fs::weakly_canonical(mesh_dir), case_abs = fs::weakly_canonical(case_dir);
@@ -111,13 +125,23 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   if (!rel.empty() && *rel.begin() != "..")
     throw scene::InputError(mesh_dir + ": the mesh directory lies inside the case directory " + case_dir +
                             ", which is replaced");
-  const Mesh2D mesh = read_mesh_2d(mesh_dir);
-  check_patches(mesh, mesh_dir);
-  const scene::CfdParams& p = s.cfd;
-  const Freestream f = freestream(s);
-  const scene::Domain d = scene::scene_domain(s);
+  return {mesh_abs.string(), case_abs.string()};
+}
 
-  CaseSettings cs;
+// The run's clock: settings for the case files, and the time a
+// flow-through counts for in the history.
+struct Schedule {
+  CaseSettings settings;
+  long lts_steps = 0;      // LTS iterations per flow-through
+  double norm_time = 0.0;  // one flow-through in the solver's (pseudo-)time
+};
+
+Schedule schedule(const scene::Scene& s, const CaseOptions& o, const Mesh2D& mesh,
+                  const Freestream& f) {
+  const scene::CfdParams& p = s.cfd;
+  const scene::Domain d = scene::scene_domain(s);
+  Schedule out;
+  CaseSettings& cs = out.settings;
   cs.np = o.np > 1 ? o.np : p.np;
   cs.lts = o.local_time_stepping.value_or(p.local_time_stepping);
   cs.flow_through = d.width() / f.mach;
@@ -130,13 +154,168 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   // at the local Courant number needs to cross the domain), and end_time,
   // the written times (one per window of write_steps iterations) and the
   // per-flow-through measures all use that count.
-  const long lts_steps = lts_steps_per_flow_through(mesh, f, p.max_co, d.width());
-  const double norm_time = cs.lts ? static_cast<double>(lts_steps) * cs.dt_ref : cs.flow_through;
-  cs.end_time = p.end_time * norm_time;
-  cs.write_interval = p.write_interval * norm_time;
+  out.lts_steps = lts_steps_per_flow_through(mesh, f, p.max_co, d.width());
+  out.norm_time = cs.lts ? static_cast<double>(out.lts_steps) * cs.dt_ref : cs.flow_through;
+  cs.end_time = p.end_time * out.norm_time;
+  cs.write_interval = p.write_interval * out.norm_time;
   cs.write_steps = std::max(1L, std::lround(cs.write_interval / cs.dt_ref));
-  const std::string cdir = case_abs.string();
-  write_case(s, mesh_abs.string(), cdir, cs);
+  return out;
+}
+
+// A running solver under watch: each completely written time is compared
+// with the one before, the steady-state rule fed and history.csv written; a
+// stop is requested (stopAt noWriteNow) once the rule is met or on Ctrl-C,
+// and the solver terminated when it ignores the request for
+// kStopGraceSeconds. A divergence or an unreadable time fails the run.
+class SolverWatch {
+ public:
+  SolverWatch(const scene::Scene& s, const std::string& cdir, const CaseReader& reader,
+              FoamProcess& solver, const Schedule& sched, double rho_inf, Clock::time_point t0)
+      : p_(s.cfd),
+        cdir_(cdir),
+        reader_(reader),
+        solver_(solver),
+        log_(solver.log_path()),
+        progress_("rhoCentralFoam " + s.name, s.cfd.end_time, "flow-throughs"),
+        rule_(sched.settings.lts ? SteadyCriteria::iteration_windows(s.cfd, sched.lts_steps)
+                                 : SteadyCriteria::time_accurate(s.cfd)),
+        rho_inf_(rho_inf),
+        norm_time_(sched.norm_time),
+        t0_(t0) {}
+
+  // Until the solver exits.
+  void run() {
+    for (;;) {
+      const bool exited = solver_.poll();
+      if (exited) remove_incomplete_times(cdir_);
+      log_.update();
+      if (log_.diverged()) {
+        solver_.terminate();
+        solver_.wait();
+        fail_diverged("the solution diverged (" + log_.divergence() + ")", solver_.log_path(),
+                      solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
+      }
+      take_written_times(exited);
+      if (exited) break;
+      if (scene::interrupted() && !stop_requested_) {
+        user_stop_ = true;
+        request_stop();
+      }
+      if (stop_requested_ && seconds_since(stop_at_) > kStopGraceSeconds) solver_.terminate();
+      std::this_thread::sleep_for(std::chrono::duration<double>(kPollSeconds));
+    }
+  }
+
+  LogFollower& log() { return log_; }
+  scene::Progress& progress() { return progress_; }
+  const SteadyState& rule() const { return rule_; }
+  const std::optional<Snapshot>& last() const { return prev_; }
+  bool steady() const { return steady_; }
+  bool stop_requested() const { return stop_requested_; }
+  bool user_stop() const { return user_stop_; }
+
+ private:
+  void request_stop() {
+    if (stop_requested_) return;
+    set_control(cdir_, "stopAt", "noWriteNow");
+    stop_requested_ = true;
+    stop_at_ = Clock::now();
+  }
+
+  void take_written_times(bool exited) {
+    for (const TimeDir& t : reader_.times_after(processed_)) {
+      // A written time is complete once the solver has logged a later step
+      // (in parallel, that step's Courant reduction waits for every rank).
+      if (!exited && !(log_.last_time() > t.time + kTimeSlack * std::max(1.0, t.time))) break;
+      Snapshot snap;
+      try {
+        snap = reader_.read(t);
+      } catch (const scene::RunError& e) {
+        solver_.terminate();
+        solver_.wait();
+        fail_solver(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
+      }
+      if (prev_) compare_with_previous(t, snap);
+      prev_ = std::move(snap);
+      processed_ = t.time;
+      if (!rule_.rows().empty())
+        write_history(cdir_, rule_.rows(), p_.steady_tol, p_.force_tol, false);
+    }
+  }
+
+  void compare_with_previous(const TimeDir& t, const Snapshot& snap) {
+    HistoryRow row = compare(*prev_, snap, reader_.parts(), rho_inf_, norm_time_);
+    row.wall_seconds = seconds_since(t0_);
+    row.steps = log_.steps_upto(t.time);
+    rule_.add(row);
+    if (rule_.steady() && !steady_) {
+      steady_ = true;
+      request_stop();
+    }
+    progress_.update(row.flow_throughs,
+                     fmt::format("drho {:.2e} dF {:.2e}", row.drho_l2, row.dforce));
+  }
+
+  const scene::CfdParams& p_;
+  const std::string& cdir_;
+  const CaseReader& reader_;
+  FoamProcess& solver_;
+  LogFollower log_;
+  scene::Progress progress_;
+  SteadyState rule_;
+  double rho_inf_, norm_time_;
+  Clock::time_point t0_;
+  std::optional<Snapshot> prev_;
+  double processed_ = 0.0;
+  bool steady_ = false, stop_requested_ = false, user_stop_ = false;
+  Clock::time_point stop_at_;
+};
+
+// After the solver: its cost and exit, the case left ready for a rerun by
+// hand, the parallel case reconstructed, the final history and state.
+void finish_run(CaseResult& r, SolverWatch& watch, FoamProcess& solver, const scene::CfdParams& p,
+                Clock::time_point t0) {
+  const std::string& cdir = r.case_dir;
+  r.wall_seconds = seconds_since(t0);
+  watch.log().update();
+  r.steps = watch.log().steps();
+  const int rc = solver.exit_code();
+  r.cpu_seconds += solver.cpu_seconds();
+  // Ready for a rerun by hand (Allrun) from the latest time.
+  set_control(cdir, "stopAt", "endTime");
+  if (rc != 0 && !watch.stop_requested())
+    fail_solver(diagnose(rc, solver.log_path()), solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
+  r.steady_state_reached = watch.steady();
+  watch.progress().finish(r.steady_state_reached ? watch.rule().why()
+                                                 : "not steady; " + watch.rule().why());
+  if (watch.user_stop()) throw scene::RunError("interrupted; the case is kept in " + cdir);
+  if (r.np > 1) r.cpu_seconds += run_foam(cdir, "reconstructPar", {"-latestTime"}).cpu_seconds;
+  const std::vector<HistoryRow>& rows = watch.rule().rows();
+  write_history(cdir, rows, p.steady_tol, p.force_tol, true);
+  if (watch.last()) {
+    r.sim_time = watch.last()->time;
+    r.wall_pressure_ratio = watch.last()->wall_pressure_ratio;
+  }
+  if (!rows.empty()) {
+    r.final_density_change_l2 = rows.back().drho_l2;
+    r.final_density_change_max = rows.back().drho_max;
+    r.final_force_change = rows.back().dforce;
+  }
+}
+
+}  // namespace
+
+CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                    const CaseOptions& o) {
+  if (!s.body) throw scene::InputError(s.source_file + ": cfd needs a scene with a body");
+  const CasePaths paths = checked_paths(mesh_dir, case_dir);
+  const Mesh2D mesh = read_mesh_2d(mesh_dir);
+  check_patches(mesh, mesh_dir);
+  const Freestream f = freestream(s);
+  const Schedule sched = schedule(s, o, mesh, f);
+  const CaseSettings& cs = sched.settings;
+  const std::string& cdir = paths.case_dir;
+  write_case(s, paths.mesh, cdir, cs);
 
   CaseResult r;
   r.case_dir = cdir;
@@ -145,102 +324,15 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.flow_through_time = cs.flow_through;
   r.local_time_stepping = cs.lts;
   r.np = cs.np;
-  r.wall_pressure_ratio = std::numeric_limits<double>::quiet_NaN();
+  r.wall_pressure_ratio = scene::kNaN;
 
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;
   const CaseReader reader(s, cdir, cs.np);
-
   const auto t0 = Clock::now();
   FoamProcess solver(cdir, "rhoCentralFoam", {}, cs.np);
-  LogFollower log(solver.log_path());
-  scene::Progress progress("rhoCentralFoam " + s.name, p.end_time, "flow-throughs");
-  std::optional<Snapshot> prev;
-  SteadyState rule(cs.lts ? SteadyCriteria::iteration_windows(p, lts_steps)
-                          : SteadyCriteria::time_accurate(p));
-  double processed = 0.0;
-  bool stop_requested = false, user_stop = false;
-  Clock::time_point stop_at;
-  auto request_stop = [&] {
-    if (stop_requested) return;
-    set_control(cdir, "stopAt", "noWriteNow");
-    stop_requested = true;
-    stop_at = Clock::now();
-  };
-  for (;;) {
-    const bool exited = solver.poll();
-    if (exited) remove_incomplete_times(cdir);
-    log.update();
-    if (log.diverged()) {
-      solver.terminate();
-      solver.wait();
-      fail_diverged("the solution diverged (" + log.divergence() + ")", solver.log_path(), solver.cpu_seconds(),
-                    seconds_since(t0), log.steps());
-    }
-    for (const TimeDir& t : reader.times_after(processed)) {
-      // A written time is complete once the solver has logged a later step
-      // (in parallel, that step's Courant reduction waits for every rank).
-      if (!exited && !(log.last_time() > t.time + kTimeSlack * std::max(1.0, t.time))) break;
-      Snapshot snap;
-      try {
-        snap = reader.read(t);
-      } catch (const scene::RunError& e) {
-        solver.terminate();
-        solver.wait();
-        const std::string why = e.what();
-        if (why.find("diverged") != std::string::npos)
-          fail_diverged(why, solver.log_path(), solver.cpu_seconds(), seconds_since(t0), log.steps());
-        fail_run(why, solver.log_path());
-      }
-      if (prev) {
-        HistoryRow row = compare(*prev, snap, reader.parts(), f.rho(), norm_time);
-        row.wall_seconds = seconds_since(t0);
-        row.steps = log.steps_upto(t.time);
-        rule.add(row);
-        if (rule.steady() && !r.steady_state_reached) {
-          r.steady_state_reached = true;
-          request_stop();
-        }
-        progress.update(row.flow_throughs, fmt::format("drho {:.2e} dF {:.2e}", row.drho_l2, row.dforce));
-      }
-      prev = std::move(snap);
-      processed = t.time;
-      if (!rule.rows().empty()) write_history(cdir, rule.rows(), p.steady_tol, p.force_tol, false);
-    }
-    if (exited) break;
-    if (scene::interrupted() && !stop_requested) {
-      user_stop = true;
-      request_stop();
-    }
-    if (stop_requested && seconds_since(stop_at) > kStopGraceSeconds) solver.terminate();
-    std::this_thread::sleep_for(std::chrono::duration<double>(kPollSeconds));
-  }
-  r.wall_seconds = seconds_since(t0);
-  log.update();
-  r.steps = log.steps();
-  const int rc = solver.exit_code();
-  r.cpu_seconds += solver.cpu_seconds();
-  // Ready for a rerun by hand (Allrun) from the latest time.
-  set_control(cdir, "stopAt", "endTime");
-  if (rc != 0 && !stop_requested) {
-    const std::string why = diagnose(rc, solver.log_path());
-    if (why.find("diverged") != std::string::npos)
-      fail_diverged(why, solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
-    fail_run(why, solver.log_path());
-  }
-  progress.finish(r.steady_state_reached ? rule.why() : "not steady; " + rule.why());
-  if (user_stop) throw scene::RunError("interrupted; the case is kept in " + cdir);
-  if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "reconstructPar", {"-latestTime"}).cpu_seconds;
-  write_history(cdir, rule.rows(), p.steady_tol, p.force_tol, true);
-  if (prev) {
-    r.sim_time = prev->time;
-    r.wall_pressure_ratio = prev->wall_pressure_ratio;
-  }
-  if (!rule.rows().empty()) {
-    r.final_density_change_l2 = rule.rows().back().drho_l2;
-    r.final_density_change_max = rule.rows().back().drho_max;
-    r.final_force_change = rule.rows().back().dforce;
-  }
-
+  SolverWatch watch(s, cdir, reader, solver, sched, f.rho(), t0);
+  watch.run();
+  finish_run(r, watch, solver, s.cfd, t0);
   scene::write_json_atomic(cdir + "/summary.json", r.summary());
   return r;
 }

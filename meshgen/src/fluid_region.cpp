@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 
 namespace meshgen {
 
@@ -195,7 +196,7 @@ std::vector<BoundaryCurve> to_curves(const std::vector<BodyPiece>& pieces) {
 }
 
 double corner_deg(Vec2 u, Vec2 v) {
-  return std::acos(std::clamp(scene::dot(u, v), -1.0, 1.0)) * 180.0 / kPi;
+  return std::acos(std::clamp(scene::dot(u, v), -1.0, 1.0)) / scene::kDeg;
 }
 
 }  // namespace

@@ -97,6 +97,7 @@ struct Plan {
   std::vector<Vec2> curve;
   std::vector<double> ci;
   std::shared_ptr<const scene::Lattice> size_lattice;  // adapted grids (body lengths)
+  std::string size_field_path;                         // where it was read from
   std::optional<double> target;
 
   Sizing at(double scale, const FluidRegion& region) const {
@@ -196,8 +197,9 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   if (mp.band_width) plan.band_width = *mp.band_width * L;
   plan.curve = r.shock_curve;
   plan.ci = r.shock_ci;
-  plan.size_lattice = r.size_field;
   plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
+  plan.size_lattice = r.size_field;
+  plan.size_field_path = r.size_field_path;
   if (r.size_field && (r.uniform || !r.shock_curve.empty()))
     throw scene::InputError(where + "a size field is a grid of its own: give it without a shock curve or --uniform");
   if (!r.uniform && r.shock_curve.empty() && !r.size_field)
@@ -248,113 +250,135 @@ double check_mesh_request(const scene::Scene& s, const MeshRequest& r) {
   return make_checked_plan(s, r, make_fluid_region(s), mesh_where(s)).estimate;
 }
 
-MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir) {
-  const auto t_total = std::chrono::steady_clock::now();
-  scene::require_supersonic(s, "meshgen");
-  const FluidRegion region = make_fluid_region(s);
-  const double L = region.length_scale;
-  const scene::MeshParams& mp = s.mesh;
-  const std::string where = mesh_where(s);
+namespace {
 
-  const CheckedPlan checked = make_checked_plan(s, r, region, where);
-  const Plan& plan = checked.plan;
-  const double flow_area = region.domain.width() * region.domain.height();
+void stop_if_interrupted(const std::string& step, const std::string& out_dir) {
+  if (scene::interrupted())
+    throw scene::RunError("interrupted " + step + "; " + out_dir + " is unchanged");
+}
 
-  // Built beside OUT and swapped in only when complete: a failed or
-  // interrupted run leaves the previous mesh in OUT as it was.
-  scene::StagedDir staged(out_dir);
-  const fs::path out(out_dir);
-  const fs::path stage(staged.path());
-  const auto stop_if_interrupted = [&](const std::string& step) {
-    if (scene::interrupted())
-      throw scene::RunError("interrupted " + step + "; " + out_dir + " is unchanged");
-  };
-
+GmshJob gmsh_job(const scene::MeshParams& mp, const fs::path& stage) {
   GmshJob job;
   job.recombine = mp.recombine;
   job.frontal = mp.algorithm == "frontal";
   job.smoothing = mp.smoothing;
   job.msh_path = (stage / "mesh.msh").string();
+  return job;
+}
 
-  double scale = 1.0, calibration = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
+// What gmsh made of a plan: one mesh, or up to kMaxTargetAttempts when a
+// target cell count is set (each attempt corrects the estimate's calibration).
+struct Meshed {
   Sizing sizing;
   PlaneMesh mesh;
-  double gmsh_seconds = 0.0, gmsh_cpu = 0.0, estimate = 0.0;
+  double gmsh_seconds = 0.0;  // wall time of the last attempt
+  double gmsh_cpu = 0.0;      // CPU time of every attempt
+  double estimate = 0.0;      // cells estimated for the last attempt
   int attempts = 0;
+};
+
+Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
+                      const fs::path& stage, const std::string& where, const std::string& out_dir) {
+  const double flow_area = region.domain.width() * region.domain.height();
+  double scale = 1.0, calibration = job.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
+  Meshed m;
   for (;;) {
-    ++attempts;
+    ++m.attempts;
     if (plan.target) scale = solve_scale(plan, region, *plan.target, calibration);
-    sizing = plan.at(scale, region);
-    if (!plan.curve.empty() && sizing.runs.empty())
+    m.sizing = plan.at(scale, region);
+    if (!plan.curve.empty() && m.sizing.runs.empty())
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
                               "beyond the domain)");
-    const SizeField field = plan.field(sizing, region);
-    estimate = estimate_cells(field, region);
-    job.thickness = plan.uniform ? sizing.uniform_h : sizing.params.h_max;
-    check_estimate(where, estimate * calibration, plan.uniform ? sizing.uniform_h : sizing.params.h_min, flow_area);
-    stop_if_interrupted("before meshing");
+    const SizeField field = plan.field(m.sizing, region);
+    m.estimate = estimate_cells(field, region);
+    job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
+    check_estimate(where, m.estimate * calibration,
+                   plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_min, flow_area);
+    stop_if_interrupted("before meshing", out_dir);
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu_before = scene::children_cpu_seconds();
-    mesh = mesh_with_gmsh_in_child(region, field, job, (stage / "plane_mesh.bin").string());
-    gmsh_seconds = seconds_since(t0);
+    m.mesh = mesh_with_gmsh_in_child(region, field, job, (stage / "plane_mesh.bin").string());
+    m.gmsh_seconds = seconds_since(t0);
     // The child's CPU time: what gmsh itself cost, whatever the load; every
     // attempt at a target cell count costs.
-    gmsh_cpu += scene::children_cpu_seconds() - cpu_before;
+    m.gmsh_cpu += scene::children_cpu_seconds() - cpu_before;
     if (!plan.target) break;
-    const double n = static_cast<double>(mesh.volume_cells);
+    const double n = static_cast<double>(m.mesh.volume_cells);
     const double miss = std::abs(n / *plan.target - 1.0);
     if (miss <= kTargetRetry) break;
-    if (attempts >= kMaxTargetAttempts) {
+    if (m.attempts >= kMaxTargetAttempts) {
       if (miss <= kTargetTolerance) break;
-      throw scene::RunError(where + "target_cells " + std::to_string(static_cast<long>(*plan.target)) +
-                            " not met within 10% after " + std::to_string(attempts) + " meshes (last " +
-                            std::to_string(mesh.volume_cells) + ")");
+      throw scene::RunError(where + "target_cells " +
+                            std::to_string(static_cast<long>(*plan.target)) +
+                            " not met within 10% after " + std::to_string(m.attempts) +
+                            " meshes (last " + std::to_string(m.mesh.volume_cells) + ")");
     }
-    calibration = n / estimate;
+    calibration = n / m.estimate;
   }
+  return m;
+}
 
-  MeshResult res;
-  res.kind = plan.uniform ? "uniform" : plan.size_lattice ? "adapted" : "clustered";
-  res.cells = mesh.volume_cells;
-  res.seconds = gmsh_seconds;
-  double hmin = std::numeric_limits<double>::infinity(), hmax = 0.0, band_max = 0.0;
+// Cell sizes over the grid and inside the shock band.
+struct CellSizes {
+  double min = std::numeric_limits<double>::infinity(), max = 0.0;
+  double band_max = 0.0;
   long band_cells = 0;
+};
+
+CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double growth) {
+  CellSizes out;
   // The band as the clustered field defines it (also measured on uniform
   // grids, for comparison), at the sizes actually used.
   SizeParams band_params = sizing.params;
-  band_params.h_max = std::max(band_params.h_max, band_params.h_min * plan.base.growth);
+  band_params.h_max = std::max(band_params.h_max, band_params.h_min * growth);
   const SizeField band_field(band_params, sizing.runs, {});
   for (const auto& c : mesh.cells) {
     const double h = cell_size(mesh, c);
-    hmin = std::min(hmin, h);
-    hmax = std::max(hmax, h);
+    out.min = std::min(out.min, h);
+    out.max = std::max(out.max, h);
     if (!sizing.runs.empty() && band_field.in_band(centroid(mesh, c))) {
-      ++band_cells;
-      band_max = std::max(band_max, h);
+      ++out.band_cells;
+      out.band_max = std::max(out.band_max, h);
     }
   }
-  res.min_cell_size = hmin;
-  res.max_cell_size = hmax;
+  return out;
+}
 
-  stop_if_interrupted("after meshing");
+// The OpenFOAM case of the staged mesh: gmshToFoam, the patch types, checkMesh.
+struct FoamCase {
+  std::map<std::string, std::string> patch_types;
+  CheckMeshReport check;
+  double cpu_seconds = 0.0;  // gmshToFoam and checkMesh
+};
+
+FoamCase export_to_foam(const fs::path& stage, const FluidRegion& region,
+                        const std::string& out_dir) {
+  FoamCase f;
   write_control_dict(stage.string());
-  double foam_cpu = run_gmsh_to_foam(stage.string()).cpu_seconds;
-  stop_if_interrupted("after gmshToFoam");
-  const std::map<std::string, std::string> types = {
-      {"inlet", "patch"}, {"outlet", "patch"}, {"top", "patch"},
-      {"bottom", region.domain.symmetric ? "symmetryPlane" : "patch"}, {"body", "wall"},
-      {"frontAndBack", "empty"}};
-  set_patch_types(stage.string(), types);
-  const CheckMeshReport check = run_check_mesh(stage.string());
-  foam_cpu += check.cpu_seconds;
-  res.max_non_orthogonality = check.max_non_orthogonality;
-  res.max_skewness = check.max_skewness;
-  res.check_mesh_ok = check.ok;
-  if (check.cells != res.cells)
-    throw scene::RunError("checkMesh counts " + std::to_string(check.cells) + " cells, gmsh " + std::to_string(res.cells));
+  f.cpu_seconds = run_gmsh_to_foam(stage.string()).cpu_seconds;
+  stop_if_interrupted("after gmshToFoam", out_dir);
+  f.patch_types = {
+      {"inlet", "patch"}, {"outlet", "patch"},
+      {"top", "patch"},   {"bottom", region.domain.symmetric ? "symmetryPlane" : "patch"},
+      {"body", "wall"},   {"frontAndBack", "empty"}};
+  set_patch_types(stage.string(), f.patch_types);
+  f.check = run_check_mesh(stage.string());
+  f.cpu_seconds += f.check.cpu_seconds;
+  return f;
+}
 
-  nlohmann::json pngs = nlohmann::json::array(), plot_error = nullptr;
+// The PNGs of the grid and a zoom on the shock; a plotting failure is
+// reported in the summary, not fatal.
+struct Plots {
+  nlohmann::json png = nlohmann::json::array();
+  nlohmann::json error = nullptr;
+};
+
+Plots plot_grid(const scene::Scene& s, const Meshed& m, const Plan& plan, const FluidRegion& region,
+                const std::string& kind, const fs::path& stage) {
+  Plots out;
   try {
+    const Sizing& sizing = m.sizing;
     PlotWindow zoom;
     zoom.half = std::max(kZoomCells * sizing.params.h_min, kZoomBands * sizing.band_max);
     if (plan.uniform) zoom.half = std::max(kZoomCells * sizing.uniform_h, kZoomBands * sizing.band_max);
@@ -364,25 +388,33 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
                                           [](const ShockRun& a, const ShockRun& b) { return a.points.size() < b.points.size(); });
       zoom.center = run.points[run.points.size() / 2];
     }
-    for (const std::string& f : plot_mesh(mesh, sizing.runs, region, zoom, s.name + " " + res.kind, stage.string()))
-      pngs.push_back(f);
+    for (const std::string& f :
+         plot_mesh(m.mesh, sizing.runs, region, zoom, s.name + " " + kind, stage.string()))
+      out.png.push_back(f);
   } catch (const std::exception& e) {
-    plot_error = e.what();
+    out.error = e.what();
   }
+  return out;
+}
 
-  nlohmann::json& j = res.details;
+nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const FluidRegion& region,
+                            const GmshJob& job, const Meshed& m, const CellSizes& sizes,
+                            const FoamCase& foam, const Plots& plots) {
+  const Sizing& sizing = m.sizing;
+  const scene::MeshParams& mp = s.mesh;
+  nlohmann::json j;
   j["scene"] = s.name;
   j["length_unit"] = "scene coordinates (sizes below); mesh parameters are in body lengths";
-  j["body_length"] = L;
+  j["body_length"] = region.length_scale;
   // CPU seconds (load-independent cost): gmsh in this process over all
   // attempts, plus gmshToFoam and checkMesh as children.
-  j["cpu_seconds"] = gmsh_cpu + foam_cpu;
-  j["gmsh_cpu_seconds"] = gmsh_cpu;
-  j["foam_cpu_seconds"] = foam_cpu;
-  j["quads"] = mesh.quads;
-  j["triangles"] = mesh.triangles;
-  j["hexahedra"] = mesh.quads;
-  j["prisms"] = mesh.triangles;
+  j["cpu_seconds"] = m.gmsh_cpu + foam.cpu_seconds;
+  j["gmsh_cpu_seconds"] = m.gmsh_cpu;
+  j["foam_cpu_seconds"] = foam.cpu_seconds;
+  j["quads"] = m.mesh.quads;
+  j["triangles"] = m.mesh.triangles;
+  j["hexahedra"] = m.mesh.quads;
+  j["prisms"] = m.mesh.triangles;
   j["h_min"] = plan.uniform ? sizing.uniform_h : sizing.params.h_min;
   j["h_max"] = plan.uniform ? sizing.uniform_h : sizing.params.h_max;
   j["h_body"] = plan.uniform ? sizing.uniform_h : sizing.params.h_body;
@@ -390,12 +422,13 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   j["thickness"] = job.thickness;
   j["band_half_width_min"] = sizing.runs.empty() ? nlohmann::json(nullptr) : nlohmann::json(sizing.band_min);
   j["band_half_width_max"] = sizing.runs.empty() ? nlohmann::json(nullptr) : nlohmann::json(sizing.band_max);
-  j["band_cells"] = band_cells;
-  j["band_max_cell_size"] = band_cells ? nlohmann::json(band_max) : nlohmann::json(nullptr);
+  j["band_cells"] = sizes.band_cells;
+  j["band_max_cell_size"] =
+      sizes.band_cells ? nlohmann::json(sizes.band_max) : nlohmann::json(nullptr);
   j["target_cells"] = plan.target ? nlohmann::json(*plan.target) : nlohmann::json(nullptr);
-  j["estimated_cells"] = estimate;
-  j["mesh_attempts"] = attempts;
-  j["size_field"] = r.size_field ? nlohmann::json(r.size_field_path) : nlohmann::json(nullptr);
+  j["estimated_cells"] = m.estimate;
+  j["mesh_attempts"] = m.attempts;
+  j["size_field"] = plan.size_lattice ? nlohmann::json(plan.size_field_path) : nlohmann::json(nullptr);
   j["shock_points"] = plan.curve.size();
   std::size_t kept = 0;
   for (const ShockRun& run : sizing.runs) kept += run.points.size();
@@ -404,29 +437,73 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   j["domain"] = domain_json(region.domain);
   j["scene_domain"] = domain_json(region.scene_domain);
   j["outlet_moved"] = region.outlet_moved;
-  j["patches"] = types;
+  j["patches"] = foam.patch_types;
   j["recombine"] = mp.recombine;
   j["algorithm"] = mp.algorithm;
   j["smoothing"] = mp.smoothing;
-  j["check_mesh_failures"] = check.failures;
-  j["png"] = pngs;
-  j["plot_error"] = plot_error;
+  j["check_mesh_failures"] = foam.check.failures;
+  j["png"] = plots.png;
+  j["plot_error"] = plots.error;
+  return j;
+}
 
-  stop_if_interrupted("after checkMesh");
-  j["seconds_total"] = seconds_since(t_total);
-  scene::write_json_atomic((stage / "summary.json").string(), res.summary());
-  // A failed check fails the run; quality warnings alone do not
-  // (foam_export.cpp says which). A failed mesh is no replacement for a good
-  // one: it is kept for inspection beside OUT, which stays as it was.
+// Writes the summary and swaps the finished case into OUT. A failed check
+// fails the run; quality warnings alone do not (foam_export.cpp says which).
+// A failed mesh is no replacement for a good one: it is kept for inspection
+// beside OUT, which stays as it was.
+void publish(scene::StagedDir& staged, const MeshResult& res, const CheckMeshReport& check,
+             const std::string& out_dir) {
+  scene::write_json_atomic((fs::path(staged.path()) / "summary.json").string(), res.summary());
   if (!check.ok && !check.warnings_only) {
     const std::string first = check.failures.substr(0, check.failures.find('\n'));
     const std::string failed_dir = staged.keep_as(".failed");
     throw scene::RunError(failed_dir + "/log.checkMesh: checkMesh failed: " +
                           (first.empty() ? std::string("no verdict") : first) + "; " + out_dir + " is unchanged");
   }
-  // Swap the finished case in whole; files of OUT this run does not write
-  // (e.g. a pipeline cache record) are carried over.
+  // Files of OUT this run does not write (e.g. a pipeline cache record) are
+  // carried over.
   staged.commit(scene::Leftovers::keep);
+}
+
+}  // namespace
+
+MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir) {
+  const auto t_total = std::chrono::steady_clock::now();
+  scene::require_supersonic(s, "meshgen");
+  const FluidRegion region = make_fluid_region(s);
+  const std::string where = mesh_where(s);
+  const CheckedPlan checked = make_checked_plan(s, r, region, where);
+  const Plan& plan = checked.plan;
+
+  // Built beside OUT and swapped in only when complete: a failed or
+  // interrupted run leaves the previous mesh in OUT as it was.
+  scene::StagedDir staged(out_dir);
+  const fs::path stage(staged.path());
+  GmshJob job = gmsh_job(s.mesh, stage);
+  const Meshed m = mesh_to_target(plan, region, job, stage, where, out_dir);
+
+  MeshResult res;
+  res.kind = plan.uniform ? "uniform" : plan.size_lattice ? "adapted" : "clustered";
+  res.cells = m.mesh.volume_cells;
+  res.seconds = m.gmsh_seconds;
+  const CellSizes sizes = measure_cell_sizes(m.mesh, m.sizing, plan.base.growth);
+  res.min_cell_size = sizes.min;
+  res.max_cell_size = sizes.max;
+
+  stop_if_interrupted("after meshing", out_dir);
+  const FoamCase foam = export_to_foam(stage, region, out_dir);
+  res.max_non_orthogonality = foam.check.max_non_orthogonality;
+  res.max_skewness = foam.check.max_skewness;
+  res.check_mesh_ok = foam.check.ok;
+  if (foam.check.cells != res.cells)
+    throw scene::RunError("checkMesh counts " + std::to_string(foam.check.cells) + " cells, gmsh " +
+                          std::to_string(res.cells));
+
+  const Plots plots = plot_grid(s, m, plan, region, res.kind, stage);
+  res.details = mesh_details(s, plan, region, job, m, sizes, foam, plots);
+  stop_if_interrupted("after checkMesh", out_dir);
+  res.details["seconds_total"] = seconds_since(t_total);
+  publish(staged, res, foam.check, out_dir);
   return res;
 }
 

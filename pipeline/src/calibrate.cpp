@@ -4,8 +4,6 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <limits>
-#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -18,19 +16,21 @@
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kDeg;
+using scene::kNaN;
 // The calibration target: the ideal diatomic gas of the CFD.
 constexpr double kTargetGamma = 1.4;
 
@@ -111,7 +111,7 @@ std::vector<Training> training_set(const CalibrateOptions& o,
   } else {
     for (const auto& path : o.scenes) {
       scene::Scene s = scene::load_scene(path);
-      if (!s.body || s.body->kind != scene::BodyKind::wedge)
+      if (!s.body || !scene::calibration_angle_deg(*s.body))
         throw scene::InputError(path + ": key 'body.kind': calibrate needs wedge scenes");
       out.push_back({s, path});
     }

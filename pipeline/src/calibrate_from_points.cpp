@@ -15,6 +15,7 @@
 #include "pipeline/studies.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -63,7 +64,7 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
     e.angle_deg = p.angle_deg;
     e.restitution = p.restitution;
     e.restitution_ci = p.restitution_ci;
-    e.gas_angle_deg = e.granular_angle_deg = e.granular_angle_ci_deg = std::nan("");
+    e.gas_angle_deg = e.granular_angle_deg = e.granular_angle_ci_deg = scene::kNaN;
     table.entries.push_back(e);
   }
   const auto choice = choose_restitution_model(pts);

@@ -1,14 +1,15 @@
 #include "pipeline/calibration_report.hpp"
 
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <vector>
+
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 // Digits shown: e to 1e-4 (its interval is ~1e-3), angles to 0.01 deg.
 constexpr int kRestitutionDecimals = 4;
 constexpr int kAngleDecimals = 2;

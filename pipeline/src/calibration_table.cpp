@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <sstream>
 
 #include "pipeline/calibration.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 #include "scene/yaml_text.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 // Distances in an old table: one Mach number counts as much as 5 deg of wedge angle.
 constexpr double kAngleScaleDeg = 5.0;
 constexpr double kExactMatch = 1e-9;

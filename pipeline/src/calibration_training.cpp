@@ -1,15 +1,16 @@
 #include "pipeline/calibration_training.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
+#include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Two wedges are the same case when Mach and angle agree to this (the
 // values are written by hand to at most a few decimals).
 constexpr double kSameWedgeTolerance = 1e-9;
@@ -39,8 +40,8 @@ std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths
   std::vector<WedgePoint> out;
   for (const auto& path : scene_paths) {
     const scene::Scene s = scene::load_scene(path);
-    if (s.body && s.body->kind == scene::BodyKind::wedge)
-      out.push_back({s.freestream.mach, s.body->angle_deg});
+    if (const auto angle_deg = s.body ? scene::calibration_angle_deg(*s.body) : std::nullopt)
+      out.push_back({s.freestream.mach, *angle_deg});
   }
   return out;
 }

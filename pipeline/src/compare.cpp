@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 // CFD wall time of the uniform family at error `e`: the cheapest run
 // already that accurate, or the log-log crossing between two runs adjacent
 // in time (equal_error.hpp); NaN when no uniform run reaches `e`.
@@ -39,8 +40,9 @@ nlohmann::json GridRun::to_json() const {
 }
 
 double GridRun::cpu_us_per_cell_step() const {
-  return cells > 0 && steps > 0 ? 1e6 * cfd_cpu_seconds / (static_cast<double>(cells) * static_cast<double>(steps))
-                                : std::numeric_limits<double>::quiet_NaN();
+  return cells > 0 && steps > 0
+             ? 1e6 * cfd_cpu_seconds / (static_cast<double>(cells) * static_cast<double>(steps))
+             : scene::kNaN;
 }
 
 void score(GridRun& r, const Reference& ref) {

@@ -5,10 +5,12 @@
 #include <limits>
 #include <random>
 
+#include "scene/units.hpp"
+
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // A 95% interval spans +-1.96 standard deviations of a normal variable.
 constexpr double kZ95 = 1.959963984540054;

@@ -3,21 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include "pipeline/bow_shock_check.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kDeg;
+using scene::kNaN;
 // Stream-facing faces fitted for the stagnation pressure: within 20 degrees
 // the Newtonian wall pressure p0 cos^2 + p_inf sin^2 differs from its
 // quadratic in theta by under 0.2% of p0; at least three faces take part.
@@ -197,19 +197,17 @@ CaseErrors measure_case_errors(const scene::Scene& s, const std::string& case_di
       have_before ? read_solution(case_dir, times[times.size() - 2], mesh.cells()) : last;
   e.solutions_compared = have_before ? 2 : 1;
 
-  if (s.body->kind == scene::BodyKind::wedge) {
-    if (const auto beta = scene::oblique_shock_beta(mach, s.body->angle_deg * kDeg, gamma)) {
-      const double rho2 = inf.rho * scene::oblique_density_ratio(mach, *beta, gamma);
-      const double p2 = inf.p * scene::oblique_pressure_ratio(mach, *beta, gamma);
-      // The cut cells' shares are the same for every field and time: clip once.
-      const std::vector<double> fractions = behind_fractions(mesh, *beta);
-      auto l1 = [&](const Solution& sol, bool density) {
-        return density ? piecewise_l1(mesh, sol.rho, fractions, inf.rho, rho2, inf.rho)
-                       : piecewise_l1(mesh, sol.p, fractions, inf.p, p2, inf.p);
-      };
-      e.l1_density = from_pair(l1(last, true), l1(before, true), have_before);
-      e.l1_pressure = from_pair(l1(last, false), l1(before, false), have_before);
-    }
+  if (const auto beta = scene::attached_shock_beta(s)) {
+    const double rho2 = inf.rho * scene::oblique_density_ratio(mach, *beta, gamma);
+    const double p2 = inf.p * scene::oblique_pressure_ratio(mach, *beta, gamma);
+    // The cut cells' shares are the same for every field and time: clip once.
+    const std::vector<double> fractions = behind_fractions(mesh, *beta);
+    auto l1 = [&](const Solution& sol, bool density) {
+      return density ? piecewise_l1(mesh, sol.rho, fractions, inf.rho, rho2, inf.rho)
+                     : piecewise_l1(mesh, sol.p, fractions, inf.p, p2, inf.p);
+    };
+    e.l1_density = from_pair(l1(last, true), l1(before, true), have_before);
+    e.l1_pressure = from_pair(l1(last, false), l1(before, false), have_before);
   }
   const double x_fore = forebody_end_x(*s.body);
   auto l1_h = [&](const Solution& sol) {

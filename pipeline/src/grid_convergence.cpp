@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/units.hpp"
+
 namespace pipeline {
 
 namespace {
@@ -12,7 +14,7 @@ constexpr double kSafetyThreeGrids = 1.25;
 
 GridConvergence richardson(double f1, double f2, double f3, double r) {
   GridConvergence g;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  using scene::kNaN;
   g.order = g.extrapolated = g.gci_fine = kNaN;
   if (!(r > 1) || !std::isfinite(f1) || !std::isfinite(f2) || !std::isfinite(f3)) {
     g.note = "missing value or refinement ratio <= 1";

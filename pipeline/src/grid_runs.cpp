@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "cfd/run_case.hpp"
 #include "meshgen/mesh.hpp"
@@ -14,13 +13,14 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
 
@@ -39,13 +39,13 @@ scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
 }
 
 double shock_value(const shockfit::ShockResult& r) {
-  if (r.shock == "attached") return r.shock_angle_deg;
-  if (r.shock == "detached") return r.standoff;
+  if (r.shock == scene::ShockKind::attached) return r.shock_angle_deg;
+  if (r.shock == scene::ShockKind::detached) return r.standoff;
   return kNaN;
 }
 double shock_ci(const shockfit::ShockResult& r) {
-  if (r.shock == "attached") return r.shock_angle_ci_deg;
-  if (r.shock == "detached") return r.standoff_ci;
+  if (r.shock == scene::ShockKind::attached) return r.shock_angle_ci_deg;
+  if (r.shock == scene::ShockKind::detached) return r.standoff_ci;
   return kNaN;
 }
 

@@ -2,18 +2,19 @@
 // Reading numbers back from the stages' summaries and writing them into
 // tables: one rule for "missing" (NaN, shown as n/a) across the pipeline.
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 // j[key] when it is a number, else NaN (a missing or null value).
 inline double number_or_nan(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>()
-                                                                 : std::numeric_limits<double>::quiet_NaN();
+                                                                : scene::kNaN;
 }
 
 // `prec` significant digits; "n/a" for what is not finite.

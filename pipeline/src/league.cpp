@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <sstream>
 
 #include "json_fields.hpp"
@@ -17,14 +16,14 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
-
+using scene::kDeg;
 
 // The shock the predictor is scored against: exact on attached wedges; for
 // discs Billig's standoff, an empirical comparison; none otherwise.

@@ -1,16 +1,16 @@
 // The parametric study's grids and the scene of each point.
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "pipeline/parametric.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Deflections up to the gamma = 1.4 detachment angle, plus the first one past
 // it so that a panel shows the granular shock detaching.
 std::vector<double> thetas_to_detachment(double mach, const std::vector<double>& candidates) {

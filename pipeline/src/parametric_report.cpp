@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <set>
 #include <sstream>
 
@@ -14,6 +13,8 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
+#include "scene/shock_kind.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -21,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 constexpr double kGammaAir = 1.4;
 constexpr double kGammaDisks = 2.0;  // dilute hard disks
 constexpr double kCurveStepDeg = 0.25;
@@ -30,7 +31,7 @@ constexpr double kSameValue = 1e-9;       // grid values are exact decimals
 constexpr double kDetachedPlotBeta = 90;  // detached granular shocks drawn at beta = 90 deg
 
 double d(const Json& r, const char* k) {
-  return r.contains(k) && r[k].is_number() ? r[k].get<double>() : NAN;
+  return r.contains(k) && r[k].is_number() ? r[k].get<double>() : scene::kNaN;
 }
 
 std::string fmt(double v, int digits = 3) {
@@ -115,7 +116,7 @@ std::string vline(double x, const std::string& text) {
 
 // Mean of granular minus reference over the attached points.
 struct Offset {
-  double mean = NAN, max_abs = 0;
+  double mean = scene::kNaN, max_abs = 0;
   int n = 0, within_ci = 0;
 };
 Offset offset(const std::vector<Json>& rows, const char* ref) {
@@ -163,7 +164,7 @@ std::string theta_beta_panel(const ParametricPanel& panel, const Json& rows,
   Series detached{"granular: detached (drawn at 90 deg)", {}, {}, {}, "points pt 6 ps 1.5"};
   for (const auto& [label, rs] : by_series(pr, "theta_deg")) {
     Series s{"granular, " + label + " (95%)", {}, {}, {}, ""};
-    double first_detached = NAN;
+    double first_detached = scene::kNaN;
     std::string unresolved;
     for (const auto& r : rs) {
       if (!resolved(r))
@@ -176,7 +177,7 @@ std::string theta_beta_panel(const ParametricPanel& panel, const Json& rows,
         s.x.push_back(d(r, "theta_deg"));
         s.y.push_back(d(r, "beta_deg"));
         s.yerr.push_back(d(r, "beta_ci_deg"));
-      } else if (r.value("shock", "") == "detached") {
+      } else if (scene::shock_kind_from(r.value("shock", "")) == scene::ShockKind::detached) {
         detached.x.push_back(d(r, "theta_deg"));
         detached.y.push_back(kDetachedPlotBeta);
         if (!std::isfinite(first_detached)) first_detached = d(r, "theta_deg");
@@ -354,7 +355,7 @@ struct Mean {
   void add(double v) {
     if (std::isfinite(v)) sum += v, ++n;
   }
-  double value() const { return n ? sum / n : NAN; }
+  double value() const { return n ? sum / n : scene::kNaN; }
 };
 
 // The page's opening reading: the panels' numbers pooled.

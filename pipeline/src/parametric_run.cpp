@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 #include "pipeline/parametric.hpp"
@@ -17,14 +16,15 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kDeg;
+using scene::kNaN;
 // The granular gas's own ratio of specific heats: dilute hard disks, (d+2)/d in 2D.
 constexpr double kGammaDisks = 2.0;
 constexpr double kGammaAir = 1.4;

@@ -1,7 +1,6 @@
 #include "pipeline/predictor.hpp"
 
 #include <cmath>
-#include <limits>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -9,26 +8,11 @@
 
 namespace pipeline {
 
-std::string to_string(ShockKind k) {
-  switch (k) {
-    case ShockKind::attached: return "attached";
-    case ShockKind::detached: return "detached";
-    case ShockKind::none: return "none";
-  }
-  return "none";
-}
-
-ShockKind shock_kind_from(const std::string& text) {
-  if (text == "attached") return ShockKind::attached;
-  if (text == "detached") return ShockKind::detached;
-  return ShockKind::none;
-}
-
 nlohmann::json Prediction::summary() const {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["predictor"] = predictor;
-  j["shock"] = to_string(kind);
+  j["shock"] = scene::to_string(kind);
   j["shock_angle_deg"] = num(shock_angle_deg);
   j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
   j["standoff"] = num(standoff);
@@ -45,7 +29,7 @@ nlohmann::json Prediction::summary() const {
 
 void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
                        const std::vector<double>& half_width) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  using scene::kNaN;
   std::vector<scene::ShockCsvRow> rows;
   for (std::size_t i = 0; i < curve.size(); ++i) {
     scene::ShockCsvRow r;
@@ -70,6 +54,7 @@ std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
 }  // namespace pipeline
 
 #include "pipeline/predictors.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 

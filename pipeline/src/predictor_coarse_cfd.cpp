@@ -26,18 +26,18 @@ Prediction CoarseCfdPredictor::predict(const PredictContext& cx) const {
   const GridRun run = grids.run("uniform", level, {}, primary_error_for(s));
   Prediction p;
   p.predictor = name();
-  p.kind = shock_kind_from(run.shock);
+  p.kind = scene::shock_kind_from(run.shock);
   p.cpu_seconds = run.mesh_cpu_seconds + run.cfd_cpu_seconds;
   p.wall_seconds = run.mesh_seconds + run.cfd_wall_seconds;
-  if (p.kind == ShockKind::attached) {
+  if (p.kind == scene::ShockKind::attached) {
     p.shock_angle_deg = run.value;
     p.shock_angle_ci_deg = run.value_ci;
-  } else if (p.kind == ShockKind::detached) {
+  } else if (p.kind == scene::ShockKind::detached) {
     p.standoff = run.value;
     p.standoff_ci = run.value_ci;
   }
   const std::string located = grids.case_dir("uniform", level) + "/shockfit/shock.csv";
-  if (p.kind != ShockKind::none)
+  if (p.kind != scene::ShockKind::none)
     for (const auto& q : read_accepted_shock(located)) {
       p.curve.push_back(q.point);
       p.half_width.push_back(q.half_width);

@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include "pipeline/stage_cache.hpp"
 #include "scene/body.hpp"
@@ -15,11 +14,12 @@
 #include "scene/cpu_clock.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Points along the predicted curve.
 constexpr int kCurvePoints = 40;
 // Billig's fits reproduce measured cylinder standoffs within a few percent;
@@ -72,7 +72,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   p.predictor = name();
   Curve curve;
   if (const auto beta = scene::attached_shock_beta(s)) {
-    p.kind = ShockKind::attached;
+    p.kind = scene::ShockKind::attached;
     p.shock_angle_deg = *beta / kDeg;
     p.shock_angle_ci_deg = 0.0;
     curve = oblique_line(d, *beta);
@@ -83,7 +83,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     const double standoff = scene::billig_standoff_cylinder(mach) * radius;
     const double rel = exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
     const scene::Vec2 nose = scene::make_body(*s.body).nose;
-    p.kind = ShockKind::detached;
+    p.kind = scene::ShockKind::detached;
     p.standoff = standoff / scene::body_length(*s.body);
     p.standoff_ci = rel * p.standoff;
     curve = billig_shape(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);

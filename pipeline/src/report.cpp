@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <numbers>
 #include <sstream>
 
 #include "cfd/run_case.hpp"
@@ -16,6 +15,7 @@
 #include "scene/body.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
+using scene::kNaN;
 // Pixels across the CFD pictures: finer than the finest cells of the case
 // studies (about 120 across the domain), so each cell shows at its size.
 constexpr int kPictureWidthPx = 900;

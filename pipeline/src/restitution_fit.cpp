@@ -1,12 +1,13 @@
 #include "pipeline/restitution_fit.hpp"
 
 #include <cmath>
-#include <limits>
+
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 // A crossing's 95% half-width below this counts as this much: one lucky
 // sweep (two nearly equal intervals) must not outweigh every other wedge.

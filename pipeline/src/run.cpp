@@ -4,8 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <limits>
-#include <numbers>
 
 #include "granular/flow_run.hpp"
 #include "pipeline/calibration.hpp"
@@ -28,6 +26,7 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
@@ -36,8 +35,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
+using scene::kNaN;
 // Digits kept of a calibrated restitution: the resolved scene echoes it
 // exactly, so rerunning the resolved scene reproduces the run bit for bit.
 constexpr double kRestitutionQuantum = 1e-6;
@@ -152,17 +151,19 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
   // wedges that the report states.
-  const bool wedge = s.body->kind == scene::BodyKind::wedge;
+  const std::optional<double> angle_deg = scene::calibration_angle_deg(*s.body);
   const std::string path = calibration_path(s, table_path);
   if (!fs::exists(path)) return "no calibration table at " + path + "; restitution left at its default";
   const auto t = read_calibration(path);
-  const auto e = interpolate_restitution(t, s.freestream.mach, wedge ? s.body->angle_deg : kNaN);
+  const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return "";
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
-                wedge ? "" : " (by Mach number alone: the table is calibrated on wedges, so this is an extrapolation)");
+                angle_deg ? ""
+                          : " (by Mach number alone: the table is calibrated on wedges, so this is "
+                            "an extrapolation)");
   return buf;
 }
 
@@ -243,7 +244,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   done = 2;
   step("prediction (" + o.predictor + ")");
   const ShockInput shock{pred.fingerprint, pred.shock_csv,
-                         !pred.size_fields.empty() || (pred.kind != ShockKind::none && pred.curve.size() >= 2),
+                         !pred.size_fields.empty() || (pred.kind != scene::ShockKind::none && pred.curve.size() >= 2),
                          pred.size_fields};
 
   // Both families, coarse to fine, interleaved level by level: a change in

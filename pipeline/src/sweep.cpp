@@ -14,6 +14,7 @@
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 #include "scene/yaml_text.hpp"
 #include "scene/progress.hpp"
 
@@ -100,7 +101,7 @@ void for_each_in_processes(int n, int jobs, const std::function<int(int)>& work)
 namespace {
 
 double num(const nlohmann::json& j, const char* k) {
-  return j.contains(k) && j[k].is_number() ? j[k].get<double>() : NAN;
+  return j.contains(k) && j[k].is_number() ? j[k].get<double>() : scene::kNaN;
 }
 
 }  // namespace

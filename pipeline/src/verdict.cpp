@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
-#include <numbers>
 #include <random>
 
-#include "scene/gasdynamics.hpp"
+#include "scene/body_traits.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kNaN;
 
 std::string run_name(const VerdictRun& r) {
   char buf[64];
@@ -90,9 +88,7 @@ void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::ve
 }  // namespace
 
 PrimaryError primary_error_for(const scene::Scene& s) {
-  const bool attached_wedge = s.body && s.body->kind == scene::BodyKind::wedge &&
-                              scene::oblique_shock_beta(s.freestream.mach, s.body->angle_deg * kDeg, s.freestream.gamma);
-  if (attached_wedge)
+  if (scene::reference_is_exact_oblique_shock(s))
     return {"l1_density",
             "exact oblique-shock solution (theta-beta-Mach), averaged over each CFD cell",
             "the attached-wedge flow is piecewise constant, so the L1 density error against the exact cell averages "

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 
 namespace scene {
 
@@ -19,7 +20,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Polygon = CGAL::Polygon_2<Kernel>;
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 // Relative edge length below which an edge counts as zero-length.
 constexpr double kZeroEdge = 1e-12;
 // Apollo command module proportions (fractions of the maximum diameter D),

@@ -1,18 +1,50 @@
 #include "scene/body_traits.hpp"
 
 #include <algorithm>
-#include <numbers>
 
 #include "scene/body.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace scene {
 
+std::optional<double> attached_shock_beta(const BodySpec& b, double mach, double gamma) {
+  switch (b.kind) {
+    case BodyKind::wedge:
+      return oblique_shock_beta(mach, b.angle_deg * kDeg, gamma);
+    case BodyKind::disc:
+    case BodyKind::apollo:
+    case BodyKind::polygon:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 std::optional<double> attached_shock_beta(const Scene& s) {
   if (!s.body) return std::nullopt;
-  switch (s.body->kind) {
+  return attached_shock_beta(*s.body, s.freestream.mach, s.freestream.gamma);
+}
+
+bool reference_is_exact_oblique_shock(const Scene& s) {
+  return attached_shock_beta(s).has_value();
+}
+
+std::optional<double> straight_ramp_length(const BodySpec& b) {
+  switch (b.kind) {
     case BodyKind::wedge:
-      return oblique_shock_beta(s.freestream.mach, s.body->angle_deg * std::numbers::pi / 180.0, s.freestream.gamma);
+      return b.length;
+    case BodyKind::disc:
+    case BodyKind::apollo:
+    case BodyKind::polygon:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> calibration_angle_deg(const BodySpec& b) {
+  switch (b.kind) {
+    case BodyKind::wedge:
+      return b.angle_deg;
     case BodyKind::disc:
     case BodyKind::apollo:
     case BodyKind::polygon:

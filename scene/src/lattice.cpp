@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <regex>
 #include <sstream>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace scene {
 
@@ -133,7 +133,10 @@ Lattice read_vti(const std::string& path) {
     v.reserve(n);
     std::string tok;
     while (is >> tok) {
-      if (tok == "nan" || tok == "NaN" || tok == "-nan") { v.push_back(std::numeric_limits<double>::quiet_NaN()); continue; }
+      if (tok == "nan" || tok == "NaN" || tok == "-nan") {
+        v.push_back(kNaN);
+        continue;
+      }
       try {
         v.push_back(std::stod(tok));
       } catch (...) {

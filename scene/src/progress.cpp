@@ -6,6 +6,8 @@
 #include <string_view>
 #include <unistd.h>
 
+#include "scene/units.hpp"
+
 namespace scene {
 
 namespace {
@@ -42,7 +44,7 @@ void Progress::update(double done, const std::string& extra) {
   last_ = now;
   const double el = std::chrono::duration<double>(now - start_).count();
   const double rate = el > 0 ? done / el : 0.0;
-  const double eta = rate > 0 && total_ > 0 ? (total_ - done) / rate : NAN;
+  const double eta = rate > 0 && total_ > 0 ? (total_ - done) / rate : kNaN;
   const double pct = total_ > 0 ? 100.0 * done / total_ : 0.0;
   std::fprintf(stderr, "%s%s: %5.1f%%  %.3g %s/s  elapsed %s  ETA %s  %s%s", tty_ ? "\r\033[K" : "",
                label_.c_str(), pct, rate, unit_.c_str(), hms(el).c_str(), hms(eta).c_str(),

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <sstream>
 
 #include "params_parse.hpp"
@@ -11,17 +10,16 @@
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 #include "yaml_structure.hpp"
 
 namespace scene {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // contract: box particles and packing_fraction must agree within 0.5%.
 constexpr double kPackingAgreement = 0.005;
 // Disk area in units of the diameter squared.
-constexpr double kDiskArea = std::numbers::pi / 4.0;
 // Free-stream Mach ceiling: beyond it the perfect-gas references are
 // meaningless and the granular inflow's event rate (which grows with Mach)
 // makes a run take forever; Mach 1e308 overflowed into a hang.

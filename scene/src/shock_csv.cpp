@@ -2,18 +2,17 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <map>
 #include <sstream>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace scene {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Enough digits that a round trip through the file changes nothing that
 // matters (the fit's own uncertainty is far larger).
 constexpr int kDigits = 12;

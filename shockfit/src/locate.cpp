@@ -4,15 +4,18 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numbers>
+#include <tuple>
 
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 #include "shockfit/profile.hpp"
 #include "shockfit/shock_line.hpp"
 #include "shockfit/two_line_fit.hpp"
 
 namespace shockfit {
+
+using scene::ShockKind;
 
 namespace {
 
@@ -134,14 +137,16 @@ bool blunt_nose(const scene::BodyGeometry& g) {
     if (!(P[i] == g.nose)) continue;
     const scene::Vec2 up = P[(i + n - 1) % n] - g.nose, lo = P[(i + 1) % n] - g.nose;
     const double a_up = std::atan2(std::abs(up.y), up.x), a_lo = std::atan2(std::abs(lo.y), lo.x);
-    return std::max(a_up, a_lo) * 180.0 / std::numbers::pi > kBluntNoseDeg;
+    return std::max(a_up, a_lo) / scene::kDeg > kBluntNoseDeg;
   }
   return false;
 }
 
 // Uncertainty that decides between fields: the interval of the reported number.
 double uncertainty(const ShockResult& r) {
-  const double u = r.shock == "attached" ? r.shock_angle_ci_deg : r.shock == "detached" ? r.standoff_ci : kNaN;
+  const double u = r.shock == ShockKind::attached   ? r.shock_angle_ci_deg
+                   : r.shock == ShockKind::detached ? r.standoff_ci
+                                                    : kNaN;
   return std::isfinite(u) ? u : std::numeric_limits<double>::infinity();
 }
 
@@ -154,7 +159,7 @@ int ShockResult::accepted_count() const {
 nlohmann::json ShockResult::summary() const {
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
-  j["shock"] = shock;
+  j["shock"] = scene::to_string(shock);
   j["field"] = field;
   j["shock_angle_deg"] = num(shock_angle_deg);
   j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
@@ -166,9 +171,10 @@ nlohmann::json ShockResult::summary() const {
   j["standoff_stagnation"] = num(standoff_stagnation);
   j["stations"] = static_cast<int>(stations.size());
   j["stations_accepted"] = accepted_count();
-  j["shock_line"] = shock == "attached" ? nlohmann::json{{"point", {line_point.x, line_point.y}},
-                                                          {"direction", {line_dir.x, line_dir.y}}}
-                                        : nlohmann::json(nullptr);
+  j["shock_line"] = shock == ShockKind::attached
+                        ? nlohmann::json{{"point", {line_point.x, line_point.y}},
+                                         {"direction", {line_dir.x, line_dir.y}}}
+                        : nlohmann::json(nullptr);
   j["shock_vertex_x"] = num(vertex_x);
   j["shock_curvature_radius"] = num(curvature_radius);
   j["field_candidates"] = candidates;
@@ -213,6 +219,154 @@ ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& lat,
 
 namespace {
 
+// The station from a sharp nose straight upstream along the axis.
+bool is_nose_station(const StationFit& f, const scene::BodyGeometry& g, double cell) {
+  return scene::norm(f.surface - g.nose) < kSamePointCells * cell && f.normal.x < 0 &&
+         std::abs(f.normal.y) < kSamePointCells;
+}
+
+// Near the axis a bow shock is a parabola x = x0 + c y^2 (Billig's
+// hyperbola to second order), fitted through every accepted point there.
+struct AxisParabola {
+  std::vector<scene::Vec2> points, normals;  // points with y from the nose's height
+  std::vector<double> sigma;
+  double x0 = kNaN, c = kNaN;
+  bool valid = false;  // a vertex inside the lattice, not downstream of the nose
+};
+
+AxisParabola fit_near_axis(const ShockResult& r, const scene::BodyGeometry& g,
+                           const scene::Lattice& lat, bool blunt) {
+  const double reach = (blunt ? kBluntParabolaReach : kParabolaReach) * g.length;
+  AxisParabola a;
+  for (const StationFit& f : r.stations)
+    if (f.accepted && std::abs(f.shock.y - g.nose.y) <= reach) {
+      a.points.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
+      a.normals.push_back(f.normal);
+      a.sigma.push_back(f.ci / kCi95);
+    }
+  if (a.points.size() >= static_cast<std::size_t>(kMinParabolaPoints))
+    std::tie(a.x0, a.c) = fit_axis_parabola(a.points);
+  // A vertex outside the lattice (a nearly flat, scattered set of points)
+  // is no vertex: fall back to the stagnation station.
+  a.valid = std::isfinite(a.x0) && a.x0 >= lat.x0 && a.x0 <= g.nose.x;
+  return a;
+}
+
+// A detached shock needs a jump on the stagnation line away from the nose
+// and, where the stations near the axis allow the check, a vertex there
+// too: one noisy profile alone must not turn an attached shock into a bow
+// shock. On a blunt nose a shock can only stand off: then the parabola
+// alone (or the stagnation station alone) decides.
+bool is_detached(const ShockResult& r, const AxisParabola& a, const scene::BodyGeometry& g,
+                 bool blunt, double attached_limit, double cell) {
+  const double vertex_tol = std::max(kVertexAgreeCi * r.stagnation.ci, kVertexAgreeCells * cell);
+  const bool stagnation_off = r.stagnation.accepted && r.stagnation.distance > attached_limit;
+  const bool parabola_off = a.valid && std::isfinite(a.x0) && g.nose.x - a.x0 > attached_limit;
+  return blunt
+             ? (parabola_off || stagnation_off)
+             : stagnation_off && (!a.valid || std::abs(a.x0 - r.stagnation.shock.x) <= vertex_tol);
+}
+
+void set_detached(ShockResult& r, const AxisParabola& a, const scene::BodyGeometry& g,
+                  const scene::ShockfitParams& p) {
+  const double L = g.length;
+  r.shock = ShockKind::detached;
+  r.standoff_stagnation = r.stagnation.distance / L;
+  r.standoff = r.standoff_stagnation;
+  r.standoff_ci = r.stagnation.ci / L;
+  // The parabola's vertex is the shock on the stagnation line with the
+  // noise of many stations instead of one: the standoff, with a bootstrap
+  // interval.
+  if (!a.valid) return;
+  r.vertex_x = a.x0;
+  r.curvature_radius = a.c > 0 ? 1.0 / (2.0 * a.c) / L : kNaN;
+  const Interval iv =
+      bootstrap(a.points, a.normals, a.sigma, p.bootstrap, p.seed,
+                [](const std::vector<scene::Vec2>& q) { return fit_axis_parabola(q).first; });
+  if (std::isfinite(a.x0) && std::isfinite(iv.lo) && a.x0 < g.nose.x) {
+    r.standoff = (g.nose.x - a.x0) / L;
+    r.standoff_ci = 0.5 * (iv.hi - iv.lo) / L;
+  }
+}
+
+void set_no_shock(ShockResult& r) {
+  r.shock = ShockKind::none;
+  for (StationFit& f : r.stations) f.accepted = false;
+}
+
+// The stations an attached shock line is fitted through: accepted, not the
+// nose station (kept as the apex of the curve only when the shock meets it
+// there, never fitted: it looks upstream along the axis), and on the upper
+// side of an asymmetric body (one shock line). Unaccepts the others.
+std::vector<std::size_t> line_stations(ShockResult& r, const scene::BodyGeometry& g,
+                                       double attached_limit, double cell) {
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < r.stations.size(); ++i) {
+    StationFit& f = r.stations[i];
+    if (!f.accepted) continue;
+    if (is_nose_station(f, g, cell)) {
+      f.accepted = f.distance <= attached_limit;
+      continue;
+    }
+    if (!g.symmetric && f.surface.y < g.nose.y) {
+      f.accepted = false;
+      continue;
+    }
+    idx.push_back(i);
+  }
+  return idx;
+}
+
+// Attached (or none): the shock line through the accepted points, outliers
+// dropped, with a bootstrap interval of its angle.
+void fit_attached(ShockResult& r, const scene::BodyGeometry& g, double attached_limit, double cell,
+                  const scene::ShockfitParams& p) {
+  const std::vector<std::size_t> idx = line_stations(r, g, attached_limit, cell);
+  std::vector<scene::Vec2> pts;
+  for (const std::size_t i : idx) pts.push_back(r.stations[i].shock);
+  const std::vector<std::size_t> keep = inliers(pts, kOutlierSigmas, kOutlierFloorCells * cell);
+  std::vector<bool> kept(idx.size(), false);
+  for (const std::size_t k : keep) kept[k] = true;
+  std::vector<scene::Vec2> good, normals;
+  std::vector<double> sig;
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    StationFit& f = r.stations[idx[k]];
+    if (!kept[k]) {
+      f.accepted = false;
+      continue;
+    }
+    good.push_back(f.shock);
+    normals.push_back(f.normal);
+    sig.push_back(f.ci / kCi95);
+  }
+  if (good.size() < static_cast<std::size_t>(kMinAccepted)) {
+    set_no_shock(r);
+    return;
+  }
+  r.shock = ShockKind::attached;
+  const LineFit lf = fit_orthogonal_line(good);
+  r.shock_angle_deg = lf.angle_deg;
+  r.line_point = lf.point;
+  r.line_dir = lf.dir;
+  const Interval iv =
+      bootstrap(good, normals, sig, p.bootstrap, p.seed,
+                [](const std::vector<scene::Vec2>& q) { return fit_orthogonal_line(q).angle_deg; });
+  r.shock_angle_lo_deg = iv.lo;
+  r.shock_angle_hi_deg = iv.hi;
+  r.shock_angle_ci_deg = 0.5 * (iv.hi - iv.lo);
+}
+
+// The station whose profile is plotted: the middle accepted one.
+int plot_station(const ShockResult& r, const scene::BodyGeometry& g, double cell) {
+  if (r.stations.empty()) return -1;
+  if (r.shock == ShockKind::detached) return 0;
+  std::vector<int> acc;
+  for (const StationFit& f : r.stations)
+    if (f.accepted && !is_nose_station(f, g, cell)) acc.push_back(f.station);
+  if (!acc.empty()) return acc[acc.size() / 2];
+  return static_cast<int>(r.stations.size() / 2);
+}
+
 ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
                                const std::string& field, const StationFitter& fit_at) {
   require_body(s);
@@ -221,135 +375,31 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
   check_overlap(s, d, lat);
   const scene::ShockfitParams& p = s.shockfit;
   const double cell = std::min(lat.dx, lat.dy);
-  const double L = g.length;
 
   ShockResult r;
   r.field = field;
   const std::vector<scene::Station> st = scene::surface_stations(g, p.stations);
   for (int k = 0; k < static_cast<int>(st.size()); ++k)
     r.stations.push_back(fit_at(k, st[k].point, st[k].normal));
-
   // The stagnation line: from the nose upstream against the free stream.
   r.stagnation = fit_at(-1, g.nose, {-1.0, 0.0});
   r.stagnation_valid = std::isfinite(r.stagnation.distance);
-  const double attached_limit = std::max(kAttachedCells * cell, kAttachedFraction * L);
+
+  const double attached_limit = std::max(kAttachedCells * cell, kAttachedFraction * g.length);
   const bool blunt = blunt_nose(g);
-  // Near the axis a bow shock is a parabola x = x0 + c y^2 (Billig's
-  // hyperbola to second order), fitted through every accepted point there.
-  std::vector<scene::Vec2> near_axis, axis_normals;
-  std::vector<double> axis_sigma;
-  for (const StationFit& f : r.stations)
-    if (f.accepted && std::abs(f.shock.y - g.nose.y) <= (blunt ? kBluntParabolaReach : kParabolaReach) * L) {
-      near_axis.push_back(f.shock - scene::Vec2{0.0, g.nose.y});
-      axis_normals.push_back(f.normal);
-      axis_sigma.push_back(f.ci / kCi95);
-    }
-  const auto [x0, c] = near_axis.size() >= static_cast<std::size_t>(kMinParabolaPoints)
-                           ? fit_axis_parabola(near_axis)
-                           : std::pair{kNaN, kNaN};
-  // A vertex outside the lattice (a nearly flat, scattered set of points)
-  // is no vertex: fall back to the stagnation station.
-  const bool have_parabola = std::isfinite(x0) && x0 >= lat.x0 && x0 <= g.nose.x;
-  // A detached shock needs a jump on the stagnation line away from the nose
-  // and, where the stations near the axis allow the check, a vertex there
-  // too: one noisy profile alone must not turn an attached shock into a bow
-  // shock.
-  // On a blunt nose a shock can only stand off: then the parabola alone
-  // (or the stagnation station alone) decides.
-  const double vertex_tol = std::max(kVertexAgreeCi * r.stagnation.ci, kVertexAgreeCells * cell);
-  const bool stagnation_off = r.stagnation.accepted && r.stagnation.distance > attached_limit;
-  const bool parabola_off = have_parabola && std::isfinite(x0) && g.nose.x - x0 > attached_limit;
-  const bool detached = blunt ? (parabola_off || stagnation_off)
-                                      : stagnation_off && (!have_parabola || std::abs(x0 - r.stagnation.shock.x) <= vertex_tol);
+  const AxisParabola axis = fit_near_axis(r, g, lat, blunt);
+  if (is_detached(r, axis, g, blunt, attached_limit, cell))
+    set_detached(r, axis, g, p);
+  else if (blunt)
+    set_no_shock(r);  // no shock can attach to a blunt nose: without a standoff, no shock
+  else
+    fit_attached(r, g, attached_limit, cell, p);
 
-  auto is_nose_station = [&](const StationFit& f) {
-    return scene::norm(f.surface - g.nose) < kSamePointCells * cell && f.normal.x < 0 &&
-           std::abs(f.normal.y) < kSamePointCells;
-  };
-
-  if (detached) {
-    r.shock = "detached";
-    r.standoff_stagnation = r.stagnation.distance / L;
-    r.standoff = r.standoff_stagnation;
-    r.standoff_ci = r.stagnation.ci / L;
-    // The parabola's vertex is the shock on the stagnation line with the
-    // noise of many stations instead of one: the standoff, with a bootstrap
-    // interval.
-    if (have_parabola) {
-      r.vertex_x = x0;
-      r.curvature_radius = c > 0 ? 1.0 / (2.0 * c) / L : kNaN;
-      const Interval iv = bootstrap(near_axis, axis_normals, axis_sigma, p.bootstrap, p.seed,
-                                    [](const std::vector<scene::Vec2>& q) { return fit_axis_parabola(q).first; });
-      if (std::isfinite(x0) && std::isfinite(iv.lo) && x0 < g.nose.x) {
-        r.standoff = (g.nose.x - x0) / L;
-        r.standoff_ci = 0.5 * (iv.hi - iv.lo) / L;
-      }
-    }
-  } else if (blunt) {
-    // No shock can attach to a blunt nose: without a standoff, no shock.
-    r.shock = "none";
-    for (StationFit& f : r.stations) f.accepted = false;
-  } else {
-    // Attached (or none): the shock line through the accepted points. The
-    // nose station of a sharp body looks upstream along the axis and finds
-    // the shock only at the apex, if at all: keep it (as the apex of the
-    // curve) only when it is that close, and never fit it.
-    std::vector<std::size_t> idx;
-    for (std::size_t i = 0; i < r.stations.size(); ++i) {
-      StationFit& f = r.stations[i];
-      if (!f.accepted) continue;
-      if (is_nose_station(f)) {
-        f.accepted = f.distance <= attached_limit;
-        continue;
-      }
-      if (!g.symmetric && f.surface.y < g.nose.y) {  // upper side only: one shock line
-        f.accepted = false;
-        continue;
-      }
-      idx.push_back(i);
-    }
-    std::vector<scene::Vec2> pts;
-    for (const std::size_t i : idx) pts.push_back(r.stations[i].shock);
-    const std::vector<std::size_t> keep = inliers(pts, kOutlierSigmas, kOutlierFloorCells * cell);
-    std::vector<bool> kept(idx.size(), false);
-    for (const std::size_t k : keep) kept[k] = true;
-    std::vector<scene::Vec2> good, normals;
-    std::vector<double> sig;
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      StationFit& f = r.stations[idx[k]];
-      if (!kept[k]) {
-        f.accepted = false;
-        continue;
-      }
-      good.push_back(f.shock);
-      normals.push_back(f.normal);
-      sig.push_back(f.ci / kCi95);
-    }
-    if (good.size() >= static_cast<std::size_t>(kMinAccepted)) {
-      r.shock = "attached";
-      const LineFit lf = fit_orthogonal_line(good);
-      r.shock_angle_deg = lf.angle_deg;
-      r.line_point = lf.point;
-      r.line_dir = lf.dir;
-      const Interval iv = bootstrap(good, normals, sig, p.bootstrap, p.seed,
-                                    [](const std::vector<scene::Vec2>& q) { return fit_orthogonal_line(q).angle_deg; });
-      r.shock_angle_lo_deg = iv.lo;
-      r.shock_angle_hi_deg = iv.hi;
-      r.shock_angle_ci_deg = 0.5 * (iv.hi - iv.lo);
-    } else {
-      r.shock = "none";
-      for (StationFit& f : r.stations) f.accepted = false;
-    }
-  }
-
-  // The station whose profile is plotted: the middle accepted one.
-  std::vector<int> acc;
-  for (const StationFit& f : r.stations)
-    if (f.accepted && !is_nose_station(f)) acc.push_back(f.station);
-  if (r.shock == "detached") r.plot_station = r.stations.empty() ? -1 : 0;
-  else if (!acc.empty()) r.plot_station = acc[acc.size() / 2];
-  else r.plot_station = r.stations.empty() ? -1 : static_cast<int>(r.stations.size() / 2);
-  r.candidates[field] = {{"shock", r.shock}, {"uncertainty", std::isfinite(uncertainty(r)) ? nlohmann::json(uncertainty(r)) : nlohmann::json(nullptr)}};
+  r.plot_station = plot_station(r, g, cell);
+  const double u = uncertainty(r);
+  r.candidates[field] = {
+      {"shock", scene::to_string(r.shock)},
+      {"uncertainty", std::isfinite(u) ? nlohmann::json(u) : nlohmann::json(nullptr)}};
   return r;
 }
 
@@ -375,7 +425,9 @@ ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
   if (cand.size() == 2) {
     ShockResult joint = locate_shock_joint(s, lat, dens, kVelocityField);
     for (const ShockResult& c : cand) joint.candidates.update(c.candidates);
-    if (joint.shock != "none" || (cand[0].shock == "none" && cand[1].shock == "none")) return joint;
+    if (joint.shock != ShockKind::none ||
+        (cand[0].shock == ShockKind::none && cand[1].shock == ShockKind::none))
+      return joint;
   }
   if (cand.empty())
     throw scene::InputError("lattice has none of the fields shockfit can use (volume_fraction, rho, number_density, v)");
@@ -386,8 +438,10 @@ ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
   for (std::size_t i = 1; i < cand.size(); ++i) {
     const ShockResult& a = cand[best];
     const ShockResult& b = cand[i];
-    if (a.shock == "none" && b.shock != "none") best = i;
-    else if (a.shock != "none" && b.shock == a.shock && uncertainty(b) < uncertainty(a)) best = i;
+    if (a.shock == ShockKind::none && b.shock != ShockKind::none)
+      best = i;
+    else if (a.shock != ShockKind::none && b.shock == a.shock && uncertainty(b) < uncertainty(a))
+      best = i;
   }
   ShockResult r = cand[best];
   for (const ShockResult& c : cand) r.candidates.update(c.candidates);

@@ -54,9 +54,9 @@ int main(int argc, char** argv) {
         throw scene::InputError(fields_path + ": field '" + r.field + "' holds no finite value");
     }
     shockfit::write_outputs(s, lat, r, out_dir);
-    scene::log_line("shockfit: " + s.name + ": shock " + r.shock + " (field " + r.field + ", " +
-                    std::to_string(r.accepted_count()) + " of " + std::to_string(r.stations.size()) +
-                    " stations accepted)");
+    scene::log_line("shockfit: " + s.name + ": shock " + scene::to_string(r.shock) + " (field " +
+                    r.field + ", " + std::to_string(r.accepted_count()) + " of " +
+                    std::to_string(r.stations.size()) + " stations accepted)");
     return 0;
   });
 }

@@ -75,13 +75,14 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
   }
   {
     std::ofstream o(f_fit);
-    if (r.shock == "attached") {
+    if (r.shock == scene::ShockKind::attached) {
       const double span = std::hypot(d.width(), d.height());
       for (const double u : {-span, span}) {
         const scene::Vec2 q = r.line_point + u * r.line_dir;
         o << num(q.x) << ' ' << num(q.y) << '\n';
       }
-    } else if (r.shock == "detached" && std::isfinite(r.vertex_x) && std::isfinite(r.curvature_radius)) {
+    } else if (r.shock == scene::ShockKind::detached && std::isfinite(r.vertex_x) &&
+               std::isfinite(r.curvature_radius)) {
       const double rc = r.curvature_radius * g.length;
       constexpr int kCurvePoints = 101;
       const double ymax = std::min(d.height(), 2.0 * rc);
@@ -117,7 +118,8 @@ bool write_plots(const scene::Scene& s, const scene::Lattice& lat, const ShockRe
     std::ofstream o(f_gp);
     o << "set terminal pngcairo size " << kPixelsWide << "," << high << " font 'sans,10'\n"
       << "set output " << name(tmp1) << "\n"
-      << "set title " << scene::gnuplot_string(s.name + ": field " + r.field + ", shock " + r.shock)
+      << "set title "
+      << scene::gnuplot_string(s.name + ": field " + r.field + ", shock " + scene::to_string(r.shock))
       << " noenhanced\n"
       << "set size ratio -1\nset xrange [" << num(d.xmin) << ":" << num(d.xmax) << "]\nset yrange [" << num(d.ymin)
       << ":" << num(d.ymax) << "]\n"

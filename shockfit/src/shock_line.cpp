@@ -3,7 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "scene/units.hpp"
 
 namespace shockfit {
 
@@ -13,7 +14,7 @@ constexpr double kMadToSigma = 1.4826;
 
 LineFit fit_orthogonal_line(const std::vector<scene::Vec2>& pts) {
   LineFit l;
-  if (pts.size() < 2) return {{std::nan(""), std::nan("")}, {std::nan(""), std::nan("")}, std::nan("")};
+  if (pts.size() < 2) return {{scene::kNaN, scene::kNaN}, {scene::kNaN, scene::kNaN}, scene::kNaN};
   scene::Vec2 c{};
   for (const auto p : pts) c += p;
   c = c / static_cast<double>(pts.size());
@@ -29,7 +30,7 @@ LineFit fit_orthogonal_line(const std::vector<scene::Vec2>& pts) {
   if (dir.x < 0 || (dir.x == 0 && dir.y < 0)) dir = -dir;
   l.point = c;
   l.dir = dir;
-  l.angle_deg = std::atan2(dir.y, dir.x) * 180.0 / std::numbers::pi;
+  l.angle_deg = std::atan2(dir.y, dir.x) / scene::kDeg;
   return l;
 }
 
@@ -53,7 +54,7 @@ std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sig
 
 std::pair<double, double> fit_axis_parabola(const std::vector<scene::Vec2>& pts) {
   const auto n = static_cast<Eigen::Index>(pts.size());
-  if (n < 2) return {std::nan(""), std::nan("")};
+  if (n < 2) return {scene::kNaN, scene::kNaN};
   Eigen::MatrixXd X(n, 2);
   Eigen::VectorXd y(n);
   for (Eigen::Index k = 0; k < n; ++k) {

@@ -4,10 +4,11 @@
 
 #include "cfd/run_case.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 #include "test_util.hpp"
 
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using scene::kDeg;
 // At ~20k cells the M3/10 wall pressure ratio is within 0.05 % of theory
 // (docs/bench_cfd.md); M5/15 is harder, allow 1 %.
 constexpr double kWallTol = 0.01;

@@ -12,11 +12,12 @@
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 #include "test_util.hpp"
 
 namespace {
 namespace fs = std::filesystem;
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+using scene::kDeg;
 
 // Coarse grid, M3/10: the wall pressure ratio is within this of theory
 // (measured 0.1-0.2 % at 5k cells).

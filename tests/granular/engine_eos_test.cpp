@@ -22,7 +22,7 @@ TEST_P(EngineEos, CompressibilityFactorMatchesHenderson) {
   e.reset_measurement();
   e.run_collisions(static_cast<std::uint64_t>(kMeasurePerParticle * kParticles));
   const double z = 1.0 + e.virial_sum() / (2.0 * e.energy_time_integral());
-  EXPECT_NEAR(z / test::henderson_z(nu), 1.0, kEosTolerance) << "nu " << nu << " Z " << z;
+  EXPECT_NEAR(z / granular::henderson_z(nu), 1.0, kEosTolerance) << "nu " << nu << " Z " << z;
 }
 
 INSTANTIATE_TEST_SUITE_P(PackingFractions, EngineEos, ::testing::Values(0.1, 0.2, 0.3, 0.4, 0.5));

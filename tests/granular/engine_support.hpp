@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "granular/engine.hpp"
+#include "granular/hard_disk.hpp"
 
 namespace granular::test {
 
@@ -23,7 +24,7 @@ Vec2 momentum(const Engine& e);
 Engine melted_box(int n, double nu, double melt, std::uint64_t seed, double restitution = 1.0,
                   double tc = 0.0);
 
-inline double henderson_z(double nu) { return (1.0 + nu * nu / 8.0) / ((1.0 - nu) * (1.0 - nu)); }
+// Henderson's contact value of the pair correlation (Enskog collision rate).
 inline double henderson_chi(double nu) { return (1.0 - 7.0 * nu / 16.0) / ((1.0 - nu) * (1.0 - nu)); }
 
 }  // namespace granular::test

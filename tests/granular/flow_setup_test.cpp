@@ -10,11 +10,12 @@
 #include "granular/flow_setup.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace {
 
 constexpr double kTight = 1e-12;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 // Henderson's Z reproduces the exact hard-disk virial series
 // Z = 1 + 2 nu + 3.1280 nu^2 + O(nu^3) (B3 of hard disks, 3.1280 in these
 // units): at nu = 0.01 the remainder is ~4 nu^3.

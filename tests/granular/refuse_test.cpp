@@ -5,66 +5,32 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <chrono>
 #include <csignal>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 
+#include "cli_run.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kExe = std::string(BIN_DIR) + "/granular";
+const std::string kExe = test_support::stage_exe("granular");
 
-struct Result {
-  int code = -1;
-  std::string err;
-  double seconds = 0;
-};
+using test_support::CliRun;
+using test_support::expect_refusal;
+using test_support::has_temporaries;
+using test_support::write_scene;
 
-Result granular(const std::string& args) {
-  Result r;
-  const auto t0 = std::chrono::steady_clock::now();
-  FILE* p = popen((kExe + " " + args + " 2>&1 >/dev/null").c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.err += buf.data();
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+CliRun granular(const std::string& args) {
+  return test_support::run_cli(kExe, args);
 }
-
 std::string fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("granular_refuse_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
-
-std::string write_scene(const std::string& dir, const std::string& text) {
-  const std::string path = dir + "/scene.yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
-void expect_refusal(const Result& r, const std::string& needle) {
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
-}
-
-bool has_temporaries(const std::string& dir) {
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string n = e.path().filename().string();
-    if (n.find(".staging-") != std::string::npos || n.find(".tmp.") != std::string::npos)
-      return true;
-  }
-  return false;
+  return test_support::fresh_dir("granular_refuse_" + name);
 }
 
 }  // namespace
@@ -100,7 +66,7 @@ TEST(Refuse, InelasticCollapseStopsWithARunError) {
   const std::string s = write_scene(dir,
                                     "box: {width: 30, height: 30}\ngranular: {packing_fraction: "
                                     "0.4, restitution: 0.01, tc: 0, time: 1000}\n");
-  const Result r = granular("run " + s + " --out " + dir + "/out");
+  const CliRun r = granular("run " + s + " --out " + dir + "/out");
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("inelastic collapse"), std::string::npos) << r.err;
   EXPECT_LT(r.seconds, 30.0);

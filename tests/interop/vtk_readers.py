@@ -37,9 +37,23 @@ if "volume_fraction" in names:
 # The OpenFOAM case, through vtkOpenFOAMReader (the reader ParaView's .foam uses).
 foam = case_dir + "/case.foam"
 open(foam, "w").close()
-# Time 0 is the template's 0.orig, whose "#includeEtc setConstraintTypes"
-# VTK 9.1's reader cannot parse (OpenFOAM writes explicit types in every
-# later time), so open the solution as a user does: the latest time.
+
+
+def internal_mesh(reader):
+    """The first block with cells (the internal mesh) and its cell arrays."""
+    out = reader.GetOutput()
+    it = out.NewIterator()
+    it.InitTraversal()
+    while not it.IsDoneWithTraversal():
+        block = it.GetCurrentDataObject()
+        if block is not None and block.GetNumberOfCells() > 0:
+            cd = block.GetCellData()
+            return block, {cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())}
+        it.GoToNextItem()
+    return None, set()
+
+
+# The solution as a user opens it: the latest time.
 f = vtk.vtkOpenFOAMReader()
 f.SetFileName(foam)
 f.SkipZeroTimeOn()
@@ -54,24 +68,35 @@ patches = {f.GetPatchArrayName(i) for i in range(f.GetNumberOfPatchArrays())}
 for need in ("internalMesh", "patch/inlet", "patch/outlet", "patch/body"):
     check(need in patches, f"{case_dir}: no patch '{need}' (has {sorted(patches)})")
 check(times is not None and times.GetNumberOfTuples() >= 2, f"{case_dir}: fewer than two written times")
-out = f.GetOutput()
-internal = None
-it = out.NewIterator()
-it.InitTraversal()
-while not it.IsDoneWithTraversal():
-    block = it.GetCurrentDataObject()
-    if block is not None and block.GetNumberOfCells() > 0 and internal is None:
-        internal = block
-    it.GoToNextItem()
+internal, fields = internal_mesh(f)
 check(internal is not None, f"{case_dir}: no internal mesh block")
 if internal is not None:
-    cd = internal.GetCellData()
-    fields = {cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())}
     for need in ("rho", "p", "T", "U"):
         check(need in fields, f"{case_dir}: internal mesh has no field '{need}' (has {sorted(fields)})")
     if "p" in fields:
-        lo, hi = cd.GetArray("p").GetRange()
+        lo, hi = internal.GetCellData().GetArray("p").GetRange()
         check(0.0 < lo < hi, f"{case_dir}: pressure range {lo}..{hi} is not a shocked flow")
+
+# The initial state opens too (its constraint patch types are written out
+# in the template, not included from OpenFOAM's etc): the solver's inputs
+# p, T and U, with a uniform free-stream pressure.
+f0 = vtk.vtkOpenFOAMReader()
+f0.SetFileName(foam)
+f0.SkipZeroTimeOff()
+f0.UpdateInformation()
+times0 = f0.GetTimeValues()
+check(times0 is not None and times0.GetNumberOfTuples() > 0 and times0.GetValue(0) == 0.0,
+      f"{case_dir}: time 0 is not listed")
+f0.UpdateTimeStep(0.0)
+f0.Update()
+internal0, fields0 = internal_mesh(f0)
+check(internal0 is not None, f"{case_dir}: time 0: no internal mesh block")
+if internal0 is not None:
+    for need in ("p", "T", "U"):
+        check(need in fields0, f"{case_dir}: time 0: internal mesh has no field '{need}' (has {sorted(fields0)})")
+    if "p" in fields0:
+        lo, hi = internal0.GetCellData().GetArray("p").GetRange()
+        check(0.0 < lo == hi, f"{case_dir}: time 0: pressure range {lo}..{hi} is not the uniform free stream")
 
 if failures:
     print("interop: " + "; ".join(failures), file=sys.stderr)

@@ -7,54 +7,24 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 
+#include "cli_run.hpp"
 #include "shock_fixtures.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string err;
-};
+using test_support::CliRun;
+using test_support::expect_refusal;
+using test_support::has_temporaries;
+using test_support::write_scene;
 
 CliRun meshgen(const std::string& args) {
-  const std::string cmd = std::string(BIN_DIR) + "/meshgen " + args + " 2>&1 >/dev/null";
-  CliRun r{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[1024];
-  while (p && fgets(buf, sizeof buf, p)) r.err += buf;
-  const int status = p ? pclose(p) : -1;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string write_scene(const std::string& dir, const std::string& text) {
-  const std::string path = dir + "/scene.yaml";
-  std::ofstream(path) << text;
-  return path;
-}
-
-void expect_refusal(const CliRun& r, const std::string& needle) {
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
-}
-
-bool has_temporaries(const std::string& dir) {
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string n = e.path().filename().string();
-    if (n.find(".staging-") != std::string::npos || n.find(".old-") != std::string::npos ||
-        n.find(".tmp.") != std::string::npos)
-      return true;
-  }
-  return false;
+  return test_support::run_cli(test_support::stage_exe("meshgen"), args);
 }
 
 constexpr const char* kWedge =

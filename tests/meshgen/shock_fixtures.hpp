@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene/body.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
 
@@ -34,9 +35,8 @@ inline std::vector<scene::Vec2> predicted_shock(const scene::Scene& s, int point
   const scene::Domain d = scene::scene_domain(s);
   std::vector<scene::Vec2> out;
   const double m = s.freestream.mach;
-  if (s.body->kind == scene::BodyKind::wedge) {
-    const double th = s.body->angle_deg * std::acos(-1.0) / 180.0;
-    const double beta = *scene::oblique_shock_beta(m, th, s.freestream.gamma);
+  if (const auto attached = scene::attached_shock_beta(s)) {
+    const double beta = *attached;
     const double xend = d.xmax * 1.2;  // runs past the outlet on purpose
     for (int i = 0; i < points; ++i) {
       const double x = xend * i / (points - 1);

@@ -9,14 +9,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <numbers>
 
 #include "scene/errors.hpp"
+#include "scene/units.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 
 int exit_code(const std::string& args) {
   const std::string cmd = std::string(BIN_DIR) + "/pipeline " + args + " >/dev/null 2>&1";

@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/league.hpp"
@@ -13,11 +12,12 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 }  // namespace
 
@@ -29,7 +29,7 @@ TEST(PredictorSlow, CoarseCfdLocatesTheWedgeShock) {
   const fs::path dir = fs::temp_directory_path() / "shockgrain_predictor_coarse_cfd";
   fs::remove_all(dir);
   const auto p = pipeline::predict_shock(s, "coarse_cfd", dir.string(), 1);
-  ASSERT_EQ(p.kind, pipeline::ShockKind::attached);
+  ASSERT_EQ(p.kind, scene::ShockKind::attached);
   constexpr double kCoarseGridTolDeg = 1.5;  // ~320 cells: the shock spans 3-4 cells of h = 0.06
   EXPECT_NEAR(p.shock_angle_deg, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4) / kDeg, kCoarseGridTolDeg);
   EXPECT_GT(p.cpu_seconds, 0.0);

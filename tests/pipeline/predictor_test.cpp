@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 
 #include <nlohmann/json.hpp>
 
@@ -17,11 +16,12 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
@@ -51,7 +51,7 @@ TEST(Predictor, CorrelationIsTheExactObliqueShockOnAnAttachedWedge) {
   const auto s = scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   const auto dir = fresh("corr_wedge");
   const auto p = pipeline::predict_shock(s, "correlation", dir.string(), 1);
-  ASSERT_EQ(p.kind, pipeline::ShockKind::attached);
+  ASSERT_EQ(p.kind, scene::ShockKind::attached);
   const double beta = *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4);
   EXPECT_NEAR(p.shock_angle_deg, beta / kDeg, 1e-9);
   ASSERT_GE(p.curve.size(), 2u);
@@ -65,7 +65,7 @@ TEST(Predictor, CorrelationIsTheExactObliqueShockOnAnAttachedWedge) {
 TEST(Predictor, CorrelationIsBilligsShockOnADisc) {
   const auto s = scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
   const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_disc").string(), 1);
-  ASSERT_EQ(p.kind, pipeline::ShockKind::detached);
+  ASSERT_EQ(p.kind, scene::ShockKind::detached);
   // Standoff in body lengths (radii): Billig's 0.386 exp(4.67/M^2).
   EXPECT_NEAR(p.standoff, scene::billig_standoff_cylinder(4.0), 1e-12);
   // The vertex stands that far ahead of the nose, on the axis.
@@ -79,7 +79,7 @@ TEST(Predictor, CorrelationIsBilligsShockOnADisc) {
 TEST(Predictor, CorrelationOnApolloStatesItsApproximation) {
   const auto s = scene::parse_scene("name: a\nbody: {kind: apollo, diameter: 1}\nfreestream: {mach: 5}\n");
   const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_apollo").string(), 1);
-  ASSERT_EQ(p.kind, pipeline::ShockKind::detached);
+  ASSERT_EQ(p.kind, scene::ShockKind::detached);
   EXPECT_NE(p.details.value("correlation", "").find("approximation"), std::string::npos) << p.details.dump();
   EXPECT_GT(p.standoff_ci, 0.2 * p.standoff) << "an approximate correlation must carry a wide band";
 }

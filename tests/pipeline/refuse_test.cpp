@@ -2,45 +2,25 @@
 // --calibration or pipeline.calibration file that does not exist (exit 2,
 // one line naming the file).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "cli_run.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string err;
-};
+using test_support::CliRun;
+using test_support::expect_refusal;
 
-Result pipeline(const std::string& args) {
-  Result r;
-  FILE* p = popen((std::string(BIN_DIR) + "/pipeline " + args + " 2>&1 >/dev/null").c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.err += buf.data();
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-void expect_refusal(const Result& r, const std::string& needle) {
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+CliRun pipeline(const std::string& args) {
+  return test_support::run_cli(test_support::stage_exe("pipeline"), args);
 }
 
 std::string fresh_scene(const std::string& name, const std::string& text) {
-  const fs::path d = fs::temp_directory_path() / ("pipeline_refuse_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  std::ofstream((d / "scene.yaml").string()) << text;
-  return (d / "scene.yaml").string();
+  return test_support::write_scene(test_support::fresh_dir("pipeline_refuse_" + name), text);
 }
 
 }  // namespace

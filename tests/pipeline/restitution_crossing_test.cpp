@@ -5,11 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
+
+#include "scene/units.hpp"
 
 namespace {
 using pipeline::SweepPoint;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 constexpr double kTolerance = 1e-12;
 }  // namespace
 

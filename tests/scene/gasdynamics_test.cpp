@@ -5,9 +5,10 @@
 #include <numbers>
 
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 constexpr double kAngleTolDeg = 0.005;  // tables give 2 decimals
 constexpr double kRatioTol = 0.0015;
 }  // namespace

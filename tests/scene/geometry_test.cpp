@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 using scene::BodyKind;
 using scene::BodySpec;
@@ -15,7 +15,7 @@ using scene::Vec2;
 
 namespace {
 constexpr double kTight = 1e-12;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 
 BodySpec wedge(double deg) {
   BodySpec b;

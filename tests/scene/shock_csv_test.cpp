@@ -7,17 +7,17 @@
 
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <string>
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() /

@@ -15,6 +15,7 @@
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
+#include "scene/shock_csv.hpp"
 #include "shockfit/locate.hpp"
 #include "synthetic.hpp"
 
@@ -77,7 +78,7 @@ TEST(Cli, WritesOutputs) {
   constexpr double kCoarseTolDeg = 0.2;  // h = L/100
   EXPECT_NEAR(j.at("shock_angle_deg").get<double>(), beta, kCoarseTolDeg);
 
-  const auto rows = shockfit::read_shock_csv((dir / "out" / "shock.csv").string());
+  const auto rows = scene::read_shock_csv((dir / "out" / "shock.csv").string()).rows;
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(s.shockfit.stations));
   int accepted = 0;
   for (const auto& f : rows) accepted += f.accepted ? 1 : 0;
@@ -139,7 +140,7 @@ TEST(ShockCsv, RoundTrip) {
   const scene::Lattice lat = wedge_lattice(s, 0.02);
   const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
   shockfit::write_outputs(s, lat, r, (dir / "out").string());
-  const auto rows = shockfit::read_shock_csv((dir / "out" / "shock.csv").string());
+  const auto rows = scene::read_shock_csv((dir / "out" / "shock.csv").string()).rows;
   ASSERT_EQ(rows.size(), r.stations.size());
   constexpr double kPrinted = 1e-9;  // 12 significant digits
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -156,29 +157,37 @@ TEST(ShockCsv, RoundTrip) {
 
 TEST(ShockCsv, Errors) {
   const fs::path dir = temp_dir("csv_errors");
+  const std::string path = (dir / "shock.csv").string();
   auto expect_error = [&](const std::string& content, const std::string& message) {
-    const std::string path = (dir / "shock.csv").string();
     scene::write_file_atomic(path, content);
     try {
-      (void)shockfit::read_shock_csv(path);
+      (void)scene::read_shock_csv(path);
       ADD_FAILURE() << "no error for: " << content;
     } catch (const scene::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path, 0), 0u) << what;
+      EXPECT_NE(what.find(message), std::string::npos) << what;
     }
   };
-  expect_error("", "not a shock.csv file: file is empty");
-  expect_error("station,shock_x,accepted\n0,1,1\n", "no column 'shock_y' in the header");
-  expect_error("shock_x,shock_y,accepted\n", "no data rows");
-  expect_error("shock_x,shock_y,accepted\n1,2\n", "line 2 has 2 fields, the header 3");
-  expect_error("shock_x,shock_y,accepted\n1,abc,1\n", "line 2, column 'shock_y': 'abc' is not a number");
-  expect_error("shock_x,shock_y,accepted\n1,2,yes\n", "column 'accepted': 'yes' is not a number");
+  expect_error("", "shock file is empty");
+  expect_error("station,shock_x,accepted\n0,1,1\n", ":1: missing column 'shock_y'");
+  expect_error("shock_x,shock_y,accepted\n", "shock file has a header but no rows");
+  expect_error("shock_x,shock_y,accepted\n1,2\n",
+               ":2: no field for column 'accepted' (2 fields, the header has 3)");
+  expect_error("shock_x,shock_y,accepted\n1,abc,1\n",
+               ":2: column 'shock_y': expected a number, got 'abc'");
+  expect_error("shock_x,shock_y,accepted\n1,2,yes\n",
+               "column 'accepted': expected a number, got 'yes'");
   expect_error("shock_x,shock_y,accepted\n1,2,3\n", "column 'accepted': expected 1 or 0");
-  expect_error("shock_x,shock_y,accepted\nnan,2,1\n", "an accepted row needs a finite shock_x, shock_y");
+  expect_error("shock_x,shock_y,accepted\nnan,2,1\n",
+               "accepted row with a non-finite shock_x or shock_y");
+  const std::string absent = (dir / "absent.csv").string();
   try {
-    (void)shockfit::read_shock_csv((dir / "absent.csv").string());
+    (void)scene::read_shock_csv(absent);
     ADD_FAILURE() << "no error for a missing file";
   } catch (const scene::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("absent.csv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(absent + ": shock file not found"), std::string::npos)
+        << e.what();
   }
   fs::remove_all(dir);
 }

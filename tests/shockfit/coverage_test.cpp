@@ -53,7 +53,8 @@ TEST(Coverage, WedgeAngleIntervalCoversSeedToSeedTruth) {
     o.out_dir = (root / std::to_string(k)).string();
     const granular::FlowResult g = granular::run_flow_scene(s, o);
     const shockfit::ShockResult r = shockfit::locate_shock(s, g.fields);
-    if (r.shock == "attached") runs.push_back({r.shock_angle_deg, r.shock_angle_ci_deg});
+    if (r.shock == scene::ShockKind::attached)
+      runs.push_back({r.shock_angle_deg, r.shock_angle_ci_deg});
   }
   fs::remove_all(root);
   ASSERT_GE(static_cast<double>(runs.size()), kMinAttachedFraction * kSeeds);

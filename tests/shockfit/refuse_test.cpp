@@ -1,15 +1,13 @@
 // shockfit refuses a lattice without a single finite value (exit 2, one
 // line naming the file), and hostile .vti headers without allocating.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli_run.hpp"
 #include "scene/errors.hpp"
 #include "scene/lattice.hpp"
 
@@ -17,44 +15,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string err;
-};
+using test_support::CliRun;
 
-Result shockfit(const std::string& args) {
-  Result r;
-  FILE* p = popen((std::string(BIN_DIR) + "/shockfit " + args + " 2>&1 >/dev/null").c_str(), "r");
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), p)) r.err += buf.data();
-  const int st = pclose(p);
-  r.code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
+CliRun shockfit(const std::string& args) {
+  return test_support::run_cli(test_support::stage_exe("shockfit"), args);
 }
-
 std::string fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockfit_refuse_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
+  return test_support::fresh_dir("shockfit_refuse_" + name);
 }
 
 }  // namespace
 
 TEST(Refuse, AllNanFieldsAreAnInputError) {
   const std::string dir = fresh("nan");
-  const std::string scene = dir + "/scene.yaml";
-  std::ofstream(scene) << "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n";
+  const std::string scene =
+      test_support::write_scene(dir, "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   scene::Lattice lat(20, 10, -0.2, 0.0, 0.06, 0.05);
   lat.add("volume_fraction", std::nan(""));
   lat.add("rho", std::nan(""));
   scene::write_vti(lat, dir + "/nan.vti");
-  const Result r = shockfit(scene + " --fields " + dir + "/nan.vti --out " + dir + "/out");
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find(dir + "/nan.vti: every value of every field is NaN or infinite"),
-            std::string::npos)
-      << r.err;
+  const CliRun r = shockfit(scene + " --fields " + dir + "/nan.vti --out " + dir + "/out");
+  test_support::expect_refusal(r, dir + "/nan.vti: every value of every field is NaN or infinite");
 }
 
 TEST(Refuse, HostileVtiHeadersAreInputErrors) {

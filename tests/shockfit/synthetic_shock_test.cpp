@@ -8,12 +8,13 @@
 
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 #include "synthetic.hpp"
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using scene::kDeg;
 
 scene::Scene wedge_scene(double mach, double angle_deg) {
   return scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: " + std::to_string(angle_deg) +
@@ -41,7 +42,7 @@ TEST(ObliqueShock, NoisyTanhAngleAndPosition) {
       return 1.0 + (r2 - 1.0) * 0.5 * (1.0 - std::tanh(above_shock(x, y, beta) / width));
     }, noise * (r2 - 1.0), seed);
     const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
-    ASSERT_EQ(r.shock, "attached") << "noise " << noise;
+    ASSERT_EQ(r.shock, scene::ShockKind::attached) << "noise " << noise;
     constexpr double kAngleTolDeg = 0.2;
     EXPECT_NEAR(r.shock_angle_deg, beta / kDeg, kAngleTolDeg) << "noise " << noise << " seed " << seed;
     EXPECT_GT(r.shock_angle_ci_deg, 0.0);
@@ -81,7 +82,7 @@ TEST(ObliqueShock, WideShockIsFound) {
     return 0.1 * (1.0 + (r2 - 1.0) * 0.5 * (1.0 - std::tanh(above_shock(x, y, beta) / width)));
   }, 0.05 * 0.1 * (r2 - 1.0), seed);
   const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
-  ASSERT_EQ(r.shock, "attached") << "seed " << seed;
+  ASSERT_EQ(r.shock, scene::ShockKind::attached) << "seed " << seed;
   EXPECT_GE(r.accepted_count(), s.shockfit.stations * 3 / 4);
   constexpr double kWideShockTolDeg = 0.75;
   EXPECT_NEAR(r.shock_angle_deg, beta / kDeg, kWideShockTolDeg) << "seed " << seed;
@@ -107,7 +108,7 @@ TEST(ObliqueShock, ExactInviscidSolutionOnLattice) {
       return above_shock(x, y, beta) > 0 ? 0.0 : v2;
     }, kSub);
     const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
-    ASSERT_EQ(r.shock, "attached") << name;
+    ASSERT_EQ(r.shock, scene::ShockKind::attached) << name;
     constexpr double kExactTolDeg = 0.1;
     EXPECT_NEAR(r.shock_angle_deg, beta / kDeg, kExactTolDeg) << name << " field " << r.field;
     EXPECT_EQ(r.field, "rho+v");  // auto fits both jointly
@@ -136,7 +137,7 @@ TEST(BowShock, BilligStandoff) {
     return 0.1 * (1.0 + (r2 - 1.0) * 0.5 * (1.0 + std::tanh(dist(x, y) / width)));
   }, 0.05 * 0.1 * (r2 - 1.0), seed);
   const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
-  ASSERT_EQ(r.shock, "detached");
+  ASSERT_EQ(r.shock, scene::ShockKind::detached);
   EXPECT_EQ(r.field, "volume_fraction");
   const double expected = delta / R;  // body length = disc radius
   constexpr double kStandoffRelTol = 0.02;
@@ -171,7 +172,7 @@ TEST(Subsonic, NoShock) {
       return -R * R * 2.0 * x * y / (r2 * r2);
     }, noise, 22);
     const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
-    EXPECT_EQ(r.shock, "none") << "noise " << noise;
+    EXPECT_EQ(r.shock, scene::ShockKind::none) << "noise " << noise;
     EXPECT_EQ(r.accepted_count(), 0) << "noise " << noise;
     EXPECT_TRUE(std::isnan(r.shock_angle_deg) && std::isnan(r.standoff));
   }

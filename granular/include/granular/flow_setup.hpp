@@ -10,14 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "granular/engine.hpp"
+#include "granular/hard_disk.hpp"
 #include "scene/body.hpp"
 #include "scene/scene.hpp"
 
 namespace granular {
 
-// Henderson's equation of state of the hard-disk fluid, Z = p / (n T)
-// = (1 + nu^2/8) / (1 - nu)^2, accurate to ~1% up to nu ~ 0.6.
-double henderson_z(double nu);
 // Adiabatic sound speed of the hard-disk fluid (m = 1): the internal energy
 // is kinetic only (c_v = 1 per disk in 2D), so
 // c^2 = T (Z + nu dZ/dnu + Z^2); the dilute limit is c^2 = 2T (gamma = 2).

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 
 #include "granular/box_setup.hpp"
@@ -17,6 +16,7 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
+#include "scene/units.hpp"
 
 namespace granular {
 
@@ -46,9 +46,8 @@ BoxSetup resolve_box(const scene::Scene& s) {
   out.height = b.height;
   out.periodic = b.periodic;
   const double area = b.width * b.height;
-  const double disk = std::numbers::pi / 4.0;
   if (g.particles && g.packing_fraction) {
-    const double want = *g.packing_fraction * area / disk;
+    const double want = *g.packing_fraction * area / scene::kDiskArea;
     if (std::abs(want - static_cast<double>(*g.particles)) > kCountAgreement * want) {
       std::ostringstream m;
       m << where(s) << "particles (" << *g.particles << ") and packing_fraction (" << *g.packing_fraction
@@ -59,13 +58,13 @@ BoxSetup resolve_box(const scene::Scene& s) {
   } else if (g.particles) {
     out.particles = *g.particles;
   } else if (g.packing_fraction) {
-    out.particles = std::llround(*g.packing_fraction * area / disk);
+    out.particles = std::llround(*g.packing_fraction * area / scene::kDiskArea);
   } else {
     throw scene::InputError(where(s) + "a box scene needs particles or packing_fraction");
   }
   if (out.particles < 1) throw scene::InputError(where(s) + "no particles in the box");
   check_particle_budget(static_cast<double>(out.particles), 1, where(s) + "key 'granular.particles': ");
-  out.packing_fraction = static_cast<double>(out.particles) * disk / area;
+  out.packing_fraction = static_cast<double>(out.particles) * scene::kDiskArea / area;
   if (!(out.packing_fraction < kClosePacking)) {
     std::ostringstream m;
     m << where(s) << "key 'granular.particles': " << out.particles << " disks in a " << b.width << " x " << b.height

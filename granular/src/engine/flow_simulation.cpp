@@ -16,6 +16,7 @@
 #include <numbers>
 
 #include "engine_impl.hpp"
+#include "granular/hard_disk.hpp"
 #include "rng.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
@@ -211,7 +212,7 @@ FlowSimulation::FlowSimulation(const FlowConfig& cfg) {
   // U = 4). Inserting every disk faster by that amount restores the
   // momentum flux p_c and, to first order, the energy flux p_c U.
   const double nu = cfg.packing_fraction;
-  const double z = (1.0 + nu * nu / 8.0) / ((1.0 - nu) * (1.0 - nu));  // Henderson
+  const double z = henderson_z(nu);
   if (cfg.inflow_speed > 0.0) m.inflow_boost = cfg.temperature * (z - 1.0) / (cfg.mass * cfg.inflow_speed);
   if (cfg.prefill) m.prefill();
   m.next_insert = -std::log(m.rng.uniform_open0()) / m.rate_total;

@@ -1,15 +1,15 @@
 #include "granular/flow_fields.hpp"
 
 #include <cmath>
-#include <limits>
-#include <numbers>
+
+#include "scene/units.hpp"
 
 namespace granular {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDiskArea = std::numbers::pi / 4.0;
+using scene::kDiskArea;
+using scene::kNaN;
 // Sub-points per side to measure the part of a cell that disk centres can
 // reach (a radius away from the body and the mirror plane): cells cut by a
 // wall hold disks only there, so densities divide by that area.

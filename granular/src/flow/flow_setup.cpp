@@ -1,19 +1,19 @@
 #include "granular/flow_setup.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include "granular/particle_budget.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
-#include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
 
 namespace granular {
 
 namespace {
 
 // Disk area in units of d^2 (radius 1/2).
-constexpr double kDiskArea = std::numbers::pi / 4.0;
+using scene::kDiskArea;
 // Sub-cells per side when measuring the fluid (non-body) area of the domain.
 constexpr int kAreaSamples = 256;
 // Room added upstream of (and above) the scene domain for blunt bodies, in
@@ -25,7 +25,6 @@ constexpr double kBluntUpstreamMargin = 1.0;
 constexpr double kBluntSideMargin = 0.5;
 // The granular gas is gamma = 2 in the dilute limit (attachment test).
 constexpr double kGranularGamma = 2.0;
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 // Closest packing of disks: an inflow at or above it cannot exist; beyond
 // ~0.7 the fluid crystallises and Henderson's Z is meaningless.
 constexpr double kMaxInflowPacking = 0.6;
@@ -41,11 +40,9 @@ double fluid_area_scene(const scene::BodyGeometry& g, const scene::Domain& d) {
 
 }  // namespace
 
-double henderson_z(double nu) { return (1.0 + nu * nu / 8.0) / ((1.0 - nu) * (1.0 - nu)); }
-
 double sound_speed(double nu, double temperature) {
   const double z = henderson_z(nu);
-  const double dz = (nu / 4.0) / ((1.0 - nu) * (1.0 - nu)) + 2.0 * (1.0 + nu * nu / 8.0) / std::pow(1.0 - nu, 3);
+  const double dz = henderson_dz(nu);
   return std::sqrt(temperature * (z + nu * dz + z * z));
 }
 
@@ -77,8 +74,7 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
 
   f.sim_domain = f.domain;
   const bool attached_wedge =
-      s.body->kind == scene::BodyKind::wedge &&
-      scene::oblique_shock_beta(f.mach, s.body->angle_deg * kDegToRad, kGranularGamma).has_value();
+      scene::attached_shock_beta(*s.body, f.mach, kGranularGamma).has_value();
   if (!attached_wedge && !s.domain_override) {
     double ylo = 0, yhi = 0;
     for (const scene::Vec2 q : f.body.polyline) {

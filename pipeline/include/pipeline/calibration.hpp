@@ -3,12 +3,12 @@
 // (Mach, angle) the coefficient of restitution at which the granular shock
 // angle equals the ideal-gas (gamma 1.4) theta-beta-Mach angle, and the
 // smooth model e(M[, theta]) fitted to them (docs/calibration.md).
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "pipeline/restitution_fit.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -22,7 +22,7 @@ struct CalibrationEntry {
   // it; granular_angle_deg is measured at that e with a seed the fit never
   // used. Old tables: NaN, and granular_angle_deg is the in-sample rerun at
   // the crossing e.
-  double loo_restitution = std::numeric_limits<double>::quiet_NaN();
+  double loo_restitution = scene::kNaN;
 };
 
 struct CalibrationTable {

@@ -1,11 +1,12 @@
 #pragma once
 // Speed against error: the clustered and uniform families of CFD runs, the
 // reference for the body, and the speedup at equal error.
-#include <limits>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -26,21 +27,21 @@ struct GridRun {
   double speedup_cfd = 0;    // clustered: uniform time at this run's error / this run's time
   // Costs in CPU seconds (user + system, children included): the meshing
   // stage (gmsh, gmshToFoam, checkMesh) and the solver (all ranks).
-  double mesh_cpu_seconds = std::numeric_limits<double>::quiet_NaN();
-  double cfd_cpu_seconds = std::numeric_limits<double>::quiet_NaN();
-  double flow_throughs = std::numeric_limits<double>::quiet_NaN();
+  double mesh_cpu_seconds = scene::kNaN;
+  double cfd_cpu_seconds = scene::kNaN;
+  double flow_throughs = scene::kNaN;
   // Exact-reference error measures (error_measures.hpp); NaN where they do not apply.
-  double primary_error = std::numeric_limits<double>::quiet_NaN();
-  double primary_error_ci = std::numeric_limits<double>::quiet_NaN();
-  double l1_density = std::numeric_limits<double>::quiet_NaN();
-  double l1_density_ci = std::numeric_limits<double>::quiet_NaN();
-  double l1_pressure = std::numeric_limits<double>::quiet_NaN();
-  double stagnation_pressure_ratio = std::numeric_limits<double>::quiet_NaN();
-  double stagnation_pressure_error = std::numeric_limits<double>::quiet_NaN();
-  double stagnation_pressure_error_ci = std::numeric_limits<double>::quiet_NaN();
-  double l1_total_enthalpy = std::numeric_limits<double>::quiet_NaN();
-  double shock_axis_deviation_cells = std::numeric_limits<double>::quiet_NaN();  // carbuncle check
-  double drag_coefficient = std::numeric_limits<double>::quiet_NaN();
+  double primary_error = scene::kNaN;
+  double primary_error_ci = scene::kNaN;
+  double l1_density = scene::kNaN;
+  double l1_density_ci = scene::kNaN;
+  double l1_pressure = scene::kNaN;
+  double stagnation_pressure_ratio = scene::kNaN;
+  double stagnation_pressure_error = scene::kNaN;
+  double stagnation_pressure_error_ci = scene::kNaN;
+  double l1_total_enthalpy = scene::kNaN;
+  double shock_axis_deviation_cells = scene::kNaN;  // carbuncle check
+  double drag_coefficient = scene::kNaN;
   std::string note;          // what went wrong measuring this run, if anything
   double cpu_us_per_cell_step() const;
   nlohmann::json to_json() const;

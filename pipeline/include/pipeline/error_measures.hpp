@@ -15,32 +15,31 @@
 // their uncertainty (the steady state's own flicker); the stagnation pressure
 // the largest change over the last written times (its slower wander).
 #include <array>
-#include <limits>
 #include <string>
 #include <vector>
 
 #include "cfd/foam_reader.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace pipeline {
 
 struct MeasuredError {
-  double value = std::numeric_limits<double>::quiet_NaN();
-  double uncertainty = std::numeric_limits<double>::quiet_NaN();  // 95% half-width
+  double value = scene::kNaN;
+  double uncertainty = scene::kNaN;  // 95% half-width
 };
 
 struct CaseErrors {
   MeasuredError l1_density, l1_pressure;  // attached wedges only
   MeasuredError l1_total_enthalpy;        // forebody, any body
   MeasuredError stagnation_pressure;      // relative error against Rayleigh's pitot value
-  double stagnation_pressure_ratio =
-      std::numeric_limits<double>::quiet_NaN();                   // measured p0 / p_inf
-  double pitot_ratio = std::numeric_limits<double>::quiet_NaN();  // exact p0 / p_inf
+  double stagnation_pressure_ratio = scene::kNaN;  // measured p0 / p_inf
+  double pitot_ratio = scene::kNaN;                // exact p0 / p_inf
   // Pressure drag coefficient of the modelled body surface: sum over body
   // faces of (p - p_inf) n_x A over q_inf = rho_inf U^2 / 2 times the body
   // length (per unit depth; a symmetric half model gives half the body's).
-  double drag_coefficient = std::numeric_limits<double>::quiet_NaN();
+  double drag_coefficient = scene::kNaN;
   int solutions_compared = 0;  // written times used (2 gives an uncertainty)
   // Carbuncle check of the last solution (bow_shock_check.hpp): the largest
   // distance of the captured shock near the symmetry axis from the smooth

@@ -10,7 +10,6 @@
 //   adapt       the same coarse run, and a size field per level from the
 //               Hessian of its density: grids adapted as a CFD engineer
 //               would, instead of a band round a curve
-#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -19,23 +18,21 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.hpp"
+#include "scene/shock_kind.hpp"
+#include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace pipeline {
 
-enum class ShockKind { attached, detached, none };
-std::string to_string(ShockKind k);
-ShockKind shock_kind_from(const std::string& text);  // attached | detached | anything else: none
-
 struct Prediction {
   std::string predictor;
-  ShockKind kind = ShockKind::none;
+  scene::ShockKind kind = scene::ShockKind::none;
   std::vector<scene::Vec2> curve;  // accepted shock points in order (scene coordinates)
   std::vector<double> half_width;  // 95% half-width along the shock normal per point (body lengths)
-  double shock_angle_deg = std::numeric_limits<double>::quiet_NaN();
-  double shock_angle_ci_deg = std::numeric_limits<double>::quiet_NaN();
-  double standoff = std::numeric_limits<double>::quiet_NaN();  // body lengths
-  double standoff_ci = std::numeric_limits<double>::quiet_NaN();
+  double shock_angle_deg = scene::kNaN;
+  double shock_angle_ci_deg = scene::kNaN;
+  double standoff = scene::kNaN;  // body lengths
+  double standoff_ci = scene::kNaN;
   double cpu_seconds = 0, wall_seconds = 0;
   std::string shock_csv;     // the curve as written for meshgen
   // Predictors that size grids themselves (adapt): per family level, a

@@ -12,6 +12,23 @@ namespace scene {
 // attached oblique shock with an exact inviscid solution (a wedge within its
 // maximum deflection); nullopt otherwise.
 std::optional<double> attached_shock_beta(const Scene& s);
+// The same for a body in a stream of the given Mach number and gamma (the
+// granular gas has its own).
+std::optional<double> attached_shock_beta(const BodySpec& b, double mach, double gamma);
+// True when the exact inviscid reference of the scene's flow is the uniform
+// state behind an attached oblique shock (so the whole field is known).
+bool reference_is_exact_oblique_shock(const Scene& s);
+
+// Face length, in scene units, when the body is a single straight ramp from
+// the origin at angle_deg (the wall on which an inviscid flow has a uniform
+// pressure, and the geometry of the block-structured wedge grid); nullopt
+// for other bodies.
+std::optional<double> straight_ramp_length(const BodySpec& b);
+
+// Deflection angle (degrees) the restitution calibration is indexed by: the
+// table is calibrated on wedges against their exact shock angle. nullopt
+// for bodies it was not calibrated on (they take it by Mach number alone).
+std::optional<double> calibration_angle_deg(const BodySpec& b);
 
 // Radius a bow-shock correlation (Billig's cylinder) is evaluated with, in
 // scene units: the disc's radius; for other bodies, half the body's frontal

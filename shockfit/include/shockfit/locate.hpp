@@ -1,17 +1,18 @@
 #pragma once
 // The shock locator: two-line fits along body normals (docs/shockfit.md).
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scene/shock_kind.hpp"
+#include "scene/units.hpp"
 #include "scene/vec2.hpp"
 
 namespace shockfit {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using scene::kNaN;
 
 struct StationFit {
   int station = 0;
@@ -23,7 +24,7 @@ struct StationFit {
 };
 
 struct ShockResult {
-  std::string shock = "none";  // attached | detached | none
+  scene::ShockKind shock = scene::ShockKind::none;
   std::string field;           // lattice field used
   double shock_angle_deg = kNaN, shock_angle_ci_deg = kNaN;  // NaN when n/a
   double standoff = kNaN, standoff_ci = kNaN;              // body lengths
@@ -59,9 +60,5 @@ ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& fiel
 // PNGs only when gnuplot runs; otherwise a warning on stderr).
 void write_outputs(const scene::Scene& s, const scene::Lattice& fields, const ShockResult& r,
                    const std::string& out_dir);
-
-// shock.csv back, columns by name. scene::InputError on a missing, empty or
-// malformed file.
-std::vector<StationFit> read_shock_csv(const std::string& path);
 
 }  // namespace shockfit

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include "scene/units.hpp"
+
 namespace shockfit {
 
 template <class Stat>
@@ -24,7 +26,7 @@ Interval bootstrap(const std::vector<scene::Vec2>& pts, const std::vector<scene:
     const double v = stat(sample);
     if (std::isfinite(v)) values.push_back(v);
   }
-  if (values.empty()) return {std::nan(""), std::nan("")};
+  if (values.empty()) return {scene::kNaN, scene::kNaN};
   std::sort(values.begin(), values.end());
   auto q = [&](double p) {
     const double x = p * static_cast<double>(values.size() - 1);

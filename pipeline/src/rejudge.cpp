@@ -1,4 +1,5 @@
 #include "pipeline/rejudge.hpp"
+#include "scene/units.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -87,7 +88,7 @@ void remeasure(const scene::Scene& s, const std::string& run_dir, const PrimaryE
       r.error_ci = std::isfinite(m.uncertainty) ? m.uncertainty : 0.0;
       errors[name] = {{"primary_error", r.error}, {"primary_error_ci", r.error_ci}};
     } catch (const std::exception& e) {
-      r.error = std::numeric_limits<double>::quiet_NaN();
+      r.error = scene::kNaN;
       errors[name] = {{"note", std::string("not measured: ") + e.what()}};
     }
   }

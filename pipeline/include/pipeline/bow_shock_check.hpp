@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cfd/foam_reader.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -22,9 +23,9 @@ namespace pipeline {
 constexpr double kCarbuncleCells = 2.0;
 
 struct AxisShockCheck {
-  double deviation_cells = std::numeric_limits<double>::quiet_NaN();  // NaN: too few shock points
+  double deviation_cells = scene::kNaN;  // NaN: too few shock points
   double cell_size =
-      std::numeric_limits<double>::quiet_NaN();  // sqrt of the mean cell area at the shock
+      scene::kNaN;  // sqrt of the mean cell area at the shock
   int axis_points = 0, fit_points = 0;
 };
 

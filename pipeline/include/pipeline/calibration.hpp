@@ -35,7 +35,7 @@ struct CalibrationTable {
   const RestitutionFit* fit(RestitutionModel m) const;
   // CPU seconds the table cost to make (training runs and out-of-sample
   // checks); NaN when not recorded. Reports amortise it over the scenes it serves.
-  double cpu_seconds = std::numeric_limits<double>::quiet_NaN();
+  double cpu_seconds = scene::kNaN;
 };
 
 CalibrationTable read_calibration(

@@ -44,7 +44,7 @@ struct CaseErrors {
   // Carbuncle check of the last solution (bow_shock_check.hpp): the largest
   // distance of the captured shock near the symmetry axis from the smooth
   // shape fitted off the axis, in cells; NaN where it cannot be measured.
-  double shock_axis_deviation_cells = std::numeric_limits<double>::quiet_NaN();
+  double shock_axis_deviation_cells = scene::kNaN;
 };
 
 // Area of the part of a polygon (any orientation) on the side n . p < 0 of

@@ -13,6 +13,7 @@
 #include "pipeline/equal_error.hpp"
 #include "pipeline/work_price.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -62,7 +63,7 @@ struct Verdict {
   // and the total speedup if this scene alone paid for it. NaN/empty when
   // the scene's predictor used no calibration table.
   struct Calibration {
-    double cpu_seconds = std::numeric_limits<double>::quiet_NaN();
+    double cpu_seconds = scene::kNaN;
     int scenes_served = 0;
     Interval speedup_total_if_alone{};
     std::string verdict_if_alone;

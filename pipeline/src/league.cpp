@@ -7,8 +7,11 @@
 #include "json_fields.hpp"
 #include "pipeline/plot.hpp"
 #include "pipeline/predictor.hpp"
+#include "pipeline/rejudge.hpp"
+#include "pipeline/report.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
+#include "pipeline/verdict.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
@@ -89,6 +92,52 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
   return j;
 }
 
+namespace {
+
+nlohmann::json recorded_summary(const std::string& path) {
+  if (!fs::is_regular_file(path))
+    throw scene::InputError(path + ": no recorded summary (run `pipeline league` without --from-runs first)");
+  try {
+    return nlohmann::json::parse(scene::read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw scene::InputError(path + ": not JSON (" + e.what() + ")");
+  }
+}
+
+// The granular family against each other predictor's family at the
+// granular family's finest error, both families with their own predictor's
+// CPU: "faster" means the granular route reaches that error in less total CPU.
+void head_to_head(std::ostringstream& md, const nlohmann::json& row, const std::string& case_dir) {
+  if (!row.contains("granular")) return;
+  const nlohmann::json& g = row["granular"];
+  const std::string g_path = case_dir + "/summary_granular.json";
+  const PrimaryError primary{g.value("primary_error", ""), "", ""};
+  const auto mine = recorded_family(g, g_path, clustered_family("granular"));
+  const double mine_cpu = number_or_nan(g["verdict_details"], "predictor_cpu_seconds");
+  std::ostringstream rows;
+  for (const auto& [name, sum] : row.items()) {
+    if (name == "granular") continue;
+    const auto other = recorded_family(sum, case_dir + "/summary_" + name + ".json", clustered_family(name));
+    const double other_cpu = number_or_nan(sum["verdict_details"], "predictor_cpu_seconds");
+    if (other.empty() || !std::isfinite(mine_cpu) || !std::isfinite(other_cpu)) {
+      rows << "| " << name << " | n/a (no clustered grids) | n/a | n/a |\n";
+      continue;
+    }
+    const Verdict v = make_verdict(primary, mine, other, mine_cpu, other_cpu);
+    rows << "| " << name << " | " << speedup_text(interval_json(v.speedup_total)) << " | "
+         << speedup_text(interval_json(v.speedup_cfd)) << " | "
+         << v.verdict << " |\n";
+  }
+  if (rows.str().empty()) return;
+  md << "\nHead to head: the other predictor's family over the granular family, total CPU (each with its own "
+        "predictor's cost) and CFD CPU at the granular family's finest " << primary.name
+     << "; `faster` means the granular route is faster.\n\n| against | total CPU other / granular (95%) | CFD CPU "
+        "other / granular (95%) | granular route |\n|---|---|---|---|\n"
+     << rows.str() << "\n";
+}
+
+}  // namespace
+
 nlohmann::json run_league(const LeagueOptions& o) {
   const std::vector<std::string> scenes = o.scenes.empty() ? case_study_scenes() : o.scenes;
   const std::vector<std::string> preds = o.predictors.empty() ? predictor_names() : o.predictors;
@@ -122,7 +171,7 @@ nlohmann::json run_league(const LeagueOptions& o) {
       ro.output_suffix = "_" + name;
       nlohmann::json sum;
       try {
-        sum = run_pipeline(s, ro);
+        sum = o.from_runs ? recorded_summary(ro.out_dir + "/summary_" + name + ".json") : run_pipeline(s, ro);
       } catch (const scene::RunError& e) {
         scene::log_line("pipeline league: " + s.name + " / " + name + ": " + e.what(), true);
         md << "| " << name << " | failed: " << e.what() << " | | | | | |\n";
@@ -133,7 +182,8 @@ nlohmann::json run_league(const LeagueOptions& o) {
       const std::string value = angle ? format_number(number_or_nan(pr, "shock_angle_deg"), 4) + " deg"
                                       : format_number(number_or_nan(pr, "standoff"), 4) + " L";
       const std::string err = angle ? format_number(number_or_nan(pr, "error_deg"), 3) + " deg"
-                                    : (sum["reference"].value("source", "").find("Billig") != std::string::npos
+                                    : (sum["reference"].value("source", "").find("Billig") != std::string::npos &&
+                                               std::isfinite(number_or_nan(pr, "relative_error"))
                                            ? format_number(100 * number_or_nan(pr, "relative_error"), 3) + "% (Billig)"
                                            : "n/a");
       md << "| " << name << " | " << format_number(number_or_nan(pr, "cpu_seconds"), 3) << " | " << value << " | " << err << " | "
@@ -162,6 +212,7 @@ nlohmann::json run_league(const LeagueOptions& o) {
       }
       row[name] = sum;
     }
+    head_to_head(md, row, o.out_dir + "/" + s.name);
     const std::string png = o.out_dir + "/" + s.name + "/league.png";
     plot_png(fig, png);
     md << "\n";

@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
     league->add_option("--predictor", lo.predictors, "predictors (default: all)");
     league->add_option("--docs", lo.docs_page, "page to write (default: docs/league.md)");
     league->add_option("--np", lo.np, "processes")->check(CLI::PositiveNumber);
+    league->add_flag("--from-runs", lo.from_runs,
+                     "write the page from the summaries already in --out, running nothing");
 
     auto* sweep = app.add_subcommand("sweep", "granular + shockfit over a parameter grid");
     std::vector<std::string> vary;

@@ -105,6 +105,17 @@ Verdict remeasured_verdict(const std::string& run_dir, nlohmann::json& errors) {
 
 }  // namespace
 
+std::vector<VerdictRun> recorded_family(const nlohmann::json& summary, const std::string& path,
+                                        const std::string& family) {
+  std::vector<VerdictRun> out;
+  if (!summary.contains("runs") || !summary["runs"].is_array())
+    throw scene::InputError(path + ": key 'runs' missing (not a `pipeline run` summary)");
+  for (std::size_t k = 0; k < summary["runs"].size(); ++k)
+    if (summary["runs"][k].value("family", "") == family)
+      out.push_back(verdict_run(summary["runs"][k], path + ": runs[" + std::to_string(k) + "]"));
+  return out;
+}
+
 Verdict rejudge_summary(const std::string& summary_path) {
   const RecordedRuns rec = recorded_runs(summary_path);
   return make_verdict(rec.primary, rec.clustered, rec.uniform, rec.predictor_cpu);

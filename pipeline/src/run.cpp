@@ -131,12 +131,13 @@ std::string predictor_dir(const std::string& out_dir, const std::string& name) {
   return name == "granular" ? out_dir : out_dir + "/predict/" + name;
 }
 
+
+}  // namespace
+
 // Clustered grids of the default predictor keep their historic names.
 std::string clustered_family(const std::string& predictor) {
   return predictor == "granular" ? "clustered" : "clustered-" + predictor;
 }
-
-}  // namespace
 
 std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
 

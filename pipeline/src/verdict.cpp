@@ -61,7 +61,8 @@ std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total, do
 
 // The speedups with the price's and the predictor timing's uncertainty drawn
 // in every Monte Carlo sample.
-void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::vector<VerdictRun>& u) {
+void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::vector<VerdictRun>& u,
+                     double u_predictor) {
   const std::vector<WorkRun> work = work_of(c, u);
   const WorkPrice fitted = v.price;
   const double predictor = v.predictor_cpu;
@@ -77,12 +78,13 @@ void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::ve
       std::chi_squared_distribution<double> chi2(dof);
       const double sd = fitted.cfd_log_sd * std::sqrt(dof / std::max(chi2(rng), 1e-300));
       const double pred = predictor * std::exp(sd * normal(rng));
-      return FamilyPair{costs(u, total, 0, &use), costs(c, total, pred, &use)};
+      const double u_pred = u_predictor > 0 ? u_predictor * std::exp(sd * normal(rng)) : 0.0;
+      return FamilyPair{costs(u, total, u_pred, &use), costs(c, total, pred, &use)};
     };
   };
   v.speedup_cfd = cost_ratio_at_error({costs(u, false, 0, &fitted), costs(c, false, 0, &fitted)}, sampler(false),
                                       v.target_error);
-  v.speedup_total = cost_ratio_at_error({costs(u, true, 0, &fitted), costs(c, true, predictor, &fitted)},
+  v.speedup_total = cost_ratio_at_error({costs(u, true, u_predictor, &fitted), costs(c, true, predictor, &fitted)},
                                         sampler(true), v.target_error);
 }
 }  // namespace
@@ -102,7 +104,7 @@ PrimaryError primary_error_for(const scene::Scene& s) {
 }
 
 Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,
-                     const std::vector<VerdictRun>& uniform, double predictor_cpu) {
+                     const std::vector<VerdictRun>& uniform, double predictor_cpu, double uniform_predictor_cpu) {
   Verdict v;
   v.primary = primary;
   v.predictor_cpu = predictor_cpu;
@@ -116,7 +118,7 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   v.clustered.cfd = fit_log_log(costs(c, false, 0, price));
   v.clustered.total = fit_log_log(costs(c, true, predictor_cpu, price));
   v.uniform.cfd = fit_log_log(costs(u, false, 0, price));
-  v.uniform.total = fit_log_log(costs(u, true, 0, price));
+  v.uniform.total = fit_log_log(costs(u, true, uniform_predictor_cpu, price));
   if (c.empty() || u.empty()) {
     v.note = "a family has no usable run";
     return v;
@@ -134,9 +136,10 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   v.extrapolated = v.target_error < u_lo || v.target_error > u_hi;
   v.measured_cfd = cost_ratio_at_error(costs(u, false, 0, nullptr), costs(c, false, 0, nullptr), v.target_error);
   v.measured_total =
-      cost_ratio_at_error(costs(u, true, 0, nullptr), costs(c, true, predictor_cpu, nullptr), v.target_error);
+      cost_ratio_at_error(costs(u, true, uniform_predictor_cpu, nullptr), costs(c, true, predictor_cpu, nullptr),
+                          v.target_error);
   if (v.priced) {
-    priced_speedups(v, c, u);
+    priced_speedups(v, c, u, uniform_predictor_cpu);
   } else {
     v.speedup_cfd = v.measured_cfd;
     v.speedup_total = v.measured_total;

@@ -27,7 +27,14 @@ struct LeagueOptions {
   std::vector<std::string> predictors;  // default: every registered predictor
   std::string docs_page;                // default: <source>/docs/league.md
   int np = 1;
+  // Build the page from the summaries already in out_dir (summary_<name>.json
+  // per scene) without running anything.
+  bool from_runs = false;
 };
+// Per scene: every predictor's family against the uniform family, then the
+// granular family head to head against each other predictor's family (their
+// total CPU at the granular family's finest error, each with its own
+// predictor's cost).
 nlohmann::json run_league(const LeagueOptions& o);
 
 }  // namespace pipeline

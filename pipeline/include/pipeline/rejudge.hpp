@@ -4,6 +4,7 @@
 // running anything again. Two recorded runs of the same scene judged by the
 // same method show whether the verdict reproduces.
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,6 +21,11 @@ Verdict rejudge_summary(const std::string& summary_path);
 // chosen for the resolved scene (RUNDIR/scene.resolved.yaml) as a new run
 // would; a case that cannot be read leaves that grid out of the fit.
 Verdict rejudge_remeasured(const std::string& run_dir);
+
+// The runs of one family ("uniform", "clustered", "clustered-adapt", ...)
+// recorded in a `pipeline run` summary read from `path` (named in errors).
+std::vector<VerdictRun> recorded_family(const nlohmann::json& summary, const std::string& path,
+                                        const std::string& family);
 
 // verdict.json beside the summary: the verdict's details, the scene name,
 // with `remeasure` every grid's new errors, and the line `pipeline run`

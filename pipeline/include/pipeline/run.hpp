@@ -30,6 +30,10 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path);
 // when the scene sets its restitution, or the table records no cost.
 double calibration_cost(const scene::Scene& s, const std::string& table_path);
 
+// The family name of a predictor's clustered grids in runs[] ("clustered"
+// for granular, "clustered-<name>" otherwise).
+std::string clustered_family(const std::string& predictor);
+
 // Runs everything; returns the pipeline summary (also DIR/summary.json).
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o);
 

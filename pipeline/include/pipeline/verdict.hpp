@@ -75,8 +75,10 @@ struct Verdict {
 double verdict_cfd_cpu(const Verdict& v, long cells, long steps, double measured);
 double verdict_mesh_cpu(const Verdict& v, long cells, long steps, double measured);
 
+// `uniform_predictor_cpu`: what the slow family's own predictor cost (0 for
+// uniform grids; a second predictor's family in a head-to-head comparison).
 Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>& clustered,
-                     const std::vector<VerdictRun>& uniform, double predictor_cpu);
+                     const std::vector<VerdictRun>& uniform, double predictor_cpu, double uniform_predictor_cpu = 0);
 
 // Fills v.calibration: the same comparison with the calibration's whole CPU
 // added to the predictor's.

@@ -35,6 +35,18 @@ void expect_finite_positive(const scene::Lattice& lat) {
   }
 }
 
+// The Apollo capsule impulsively started at Mach 5, on a coarse uniform
+// meshgen grid (h = 0.05 D) written to mesh_dir; `cfd` is the scene's cfd section.
+constexpr const char* kApolloM5 = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
+scene::Scene apollo_on_coarse_grid(const std::string& mesh_dir, const std::string& cfd) {
+  const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: " + cfd + "\n");
+  meshgen::MeshRequest req;
+  req.uniform = true;
+  req.h_min = 0.05;
+  meshgen::generate_mesh(s, req, mesh_dir);
+  return s;
+}
+
 TEST(HardCases, Mach8WedgeStaysStable) {
   // The strong shock's density noise floor is ~0.15 per flow-through: a
   // looser steady tolerance, and a short run.
@@ -53,14 +65,9 @@ TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
   // within a fraction of a flow-through; the more dissipative Tadmor flux
   // (the Apollo case study's setting) runs through. Either way the run must
   // end in a result or a clear RunError, never a hang or a silent NaN.
-  const std::string base = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
   const std::string d = cfd_test::scratch_dir();
   {
-    const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3}\n");
-    meshgen::MeshRequest req;
-    req.uniform = true;
-    req.h_min = 0.05;
-    meshgen::generate_mesh(s, req, d + "/mesh");
+    const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
     try {
       (void)cfd::run_case(s, d + "/mesh", d + "/kurganov", {});
       expect_finite_positive(cfd::resample_to_lattice(s, d + "/kurganov", 80, 80));
@@ -70,7 +77,7 @@ TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
       EXPECT_TRUE(std::filesystem::exists(d + "/kurganov/log.rhoCentralFoam"));  // case kept
     }
   }
-  const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
+  const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/tadmor", {});
   EXPECT_GT(r.steps, 0);
   EXPECT_GT(r.sim_time, 0.0);
@@ -95,13 +102,8 @@ TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
   // the Courant number, says so in the result and summary.json, and counts
   // the failed attempt's CPU and steps. With cfd.fallback false the
   // divergence is the run's end.
-  const std::string base = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
   const std::string d = cfd_test::scratch_dir();
-  const scene::Scene s = scene::parse_scene(base + "cfd: {end_time: 3}\n");
-  meshgen::MeshRequest req;
-  req.uniform = true;
-  req.h_min = 0.05;
-  meshgen::generate_mesh(s, req, d + "/mesh");
+  const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
   const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
   EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos) << r.fallback;
   EXPECT_NE(r.fallback.find("diverged"), std::string::npos) << r.fallback;
@@ -110,7 +112,7 @@ TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
   const std::string summary = scene::read_file(d + "/case/summary.json");
   EXPECT_NE(summary.find("\"fallback\": \"flux_scheme Tadmor"), std::string::npos) << summary;
 
-  const scene::Scene strict = scene::parse_scene(base + "cfd: {end_time: 3, fallback: false}\n");
+  const scene::Scene strict = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
   EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}), cfd::Diverged);
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
@@ -26,20 +27,10 @@ constexpr double kMinDensityRatio = 8.0;
 // Margin (body lengths) kept from the jump and from the body when counting.
 constexpr double kMargin = 0.15;
 
-struct CliRun {
-  int code;
-  std::string output;
-};
+using test_support::CliRun;
 
 CliRun run_meshgen(const std::string& args) {
-  const std::string cmd = std::string(BIN_DIR) + "/meshgen " + args + " 2>&1";
-  CliRun r{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (p && fgets(buf, sizeof buf, p)) r.output += buf;
-  const int status = p ? pclose(p) : -1;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return test_support::run_cli(test_support::stage_exe("meshgen"), args);
 }
 
 // A lattice over the scene's domain: kFine left of x_split, kCoarse right.
@@ -108,7 +99,7 @@ TEST(SizeFieldMesh, CellsConcentrateWhereTheFieldIsSmall) {
   const CliRun r =
       run_meshgen(scene_path + " --size-field " + field + " --h-min " + std::to_string(kFine) +
                   " --h-max " + std::to_string(kCoarse) + " --out " + dir + "/mesh");
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.code, 0) << r.err;
   const auto sum = nlohmann::json::parse(scene::read_file(dir + "/mesh/summary.json"));
   EXPECT_EQ(sum.value("kind", ""), "adapted");
   EXPECT_EQ(sum.value("size_field", ""), field);
@@ -139,9 +130,9 @@ TEST(SizeFieldMesh, BadSizeFieldsExitTwoNamingTheFile) {
   const std::string dir = meshgen_test::fresh_dir("size_field_bad");
   const auto expect_refused = [&](const std::string& file, const std::string& words) {
     const CliRun r = run_meshgen(scene_path + " --size-field " + file + " --out " + dir + "/mesh");
-    EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find(words), std::string::npos) << r.output;
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/mesh")) << "nothing written for " << file;
   };
   expect_refused(dir + "/absent.vti", "no such file");
@@ -172,7 +163,7 @@ TEST(SizeFieldMesh, BadSizeFieldsExitTwoNamingTheFile) {
   scene::write_vti(halves(d, 0.0), dir + "/good.vti");
   const CliRun both = run_meshgen(scene_path + " --size-field " + dir +
                                   "/good.vti --uniform --out " + dir + "/mesh");
-  EXPECT_EQ(both.code, 2) << both.output;
-  EXPECT_NE(both.output.find("give one of --shock, --size-field and --uniform"), std::string::npos)
-      << both.output;
+  EXPECT_EQ(both.code, 2) << both.err;
+  EXPECT_NE(both.err.find("give one of --shock, --size-field and --uniform"), std::string::npos)
+      << both.err;
 }

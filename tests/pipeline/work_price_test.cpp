@@ -157,3 +157,16 @@ TEST(PricedVerdict, CalibrationIsASeparateLineThatLowersTheTotalWhenChargedAlone
   const auto j = pipeline::verdict_json(v)["calibration"];
   EXPECT_DOUBLE_EQ(j["cpu_seconds_per_scene"].get<double>(), kCalibrationCpu / 5);
 }
+
+TEST(PricedVerdict, HeadToHeadChargesEachFamilyItsOwnPredictor) {
+  // The same family against itself: 1x when both predictors cost alike; a
+  // dearer predictor on the slow side makes the fast side faster in total,
+  // never in CFD CPU.
+  const Families f = families(0.0, 1);
+  const auto even = pipeline::make_verdict(kPrimary, f.clustered, f.clustered, 2.0, 2.0);
+  EXPECT_NEAR(even.speedup_total.value, 1.0, 1e-9);
+  EXPECT_NEAR(even.speedup_cfd.value, 1.0, 1e-9);
+  const auto dear = pipeline::make_verdict(kPrimary, f.clustered, f.clustered, 2.0, 50.0);
+  EXPECT_GT(dear.speedup_total.value, 2.0);
+  EXPECT_NEAR(dear.speedup_cfd.value, 1.0, 1e-9);
+}

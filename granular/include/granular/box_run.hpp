@@ -1,22 +1,13 @@
 #pragma once
 // Validation box scenes (contract: `box:` scenes): set up, run, summarise.
-#include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "granular/run_options.hpp"
 #include "scene/scene.hpp"
 
 namespace granular {
-
-struct RunOptions {
-  std::string out_dir;
-  int np = 1;              // ignored by box scenes (the engine is single-threaded)
-  std::string restart;     // continue from this checkpoint (OUT/checkpoint.bin of an earlier run)
-  // Stop like Ctrl-C once this many collisions are done (0: never); a
-  // checkpoint is written when the scene sets checkpoint_interval.
-  std::uint64_t stop_after_collisions = 0;
-};
 
 // Runs the box scene `s` (s.box set), writes o.out_dir/summary.json
 // atomically and returns the summary. Ctrl-C (scene::interrupted()) stops

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "granular/box_run.hpp"
+#include "granular/run_options.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 

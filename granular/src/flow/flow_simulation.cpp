@@ -15,9 +15,9 @@
 #include <limits>
 #include <numbers>
 
-#include "engine_impl.hpp"
+#include "engine/engine_impl.hpp"
+#include "engine/rng.hpp"
 #include "granular/hard_disk.hpp"
-#include "rng.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 

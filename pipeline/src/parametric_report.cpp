@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "json_fields.hpp"
 #include "pipeline/parametric.hpp"
 #include "pipeline/plot.hpp"
 #include "scene/gasdynamics.hpp"
@@ -30,9 +31,8 @@ constexpr double kCurveMachStep = 0.05;
 constexpr double kSameValue = 1e-9;       // grid values are exact decimals
 constexpr double kDetachedPlotBeta = 90;  // detached granular shocks drawn at beta = 90 deg
 
-double d(const Json& r, const char* k) {
-  return r.contains(k) && r[k].is_number() ? r[k].get<double>() : scene::kNaN;
-}
+// A number of a row, NaN when missing (one rule across the pipeline).
+double d(const Json& r, const char* k) { return number_or_nan(r, k); }
 
 std::string fmt(double v, int digits = 3) {
   if (!std::isfinite(v)) return "n/a";

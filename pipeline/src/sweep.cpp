@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "json_fields.hpp"
 #include "pipeline/plot.hpp"
 #include "pipeline/process_pool.hpp"
 #include "pipeline/run.hpp"
@@ -98,14 +99,6 @@ void for_each_in_processes(int n, int jobs, const std::function<int(int)>& work)
   if (failed) scene::log_line("pipeline: " + std::to_string(failed) + " sweep case(s) failed; see their directories", true);
 }
 
-namespace {
-
-double num(const nlohmann::json& j, const char* k) {
-  return j.contains(k) && j[k].is_number() ? j[k].get<double>() : scene::kNaN;
-}
-
-}  // namespace
-
 nlohmann::json run_sweep(const std::string& scene_path, const std::vector<Vary>& vary, const SweepOptions& o) {
   // Cartesian product of the values, first key slowest.
   std::vector<std::vector<std::pair<std::string, std::string>>> cases{{}};
@@ -150,8 +143,8 @@ nlohmann::json run_sweep(const std::string& scene_path, const std::vector<Vary>&
     }
     row["prediction"] = pred;
     rows.push_back(row);
-    csv << pred.value("shock", "failed") << "," << num(pred, "shock_angle_deg") << "," << num(pred, "shock_angle_ci_deg")
-        << "," << num(pred, "standoff") << "," << num(pred, "standoff_ci") << "," << num(pred, "granular_wall_seconds") << "\n";
+    csv << pred.value("shock", "failed") << "," << number_or_nan(pred, "shock_angle_deg") << "," << number_or_nan(pred, "shock_angle_ci_deg")
+        << "," << number_or_nan(pred, "standoff") << "," << number_or_nan(pred, "standoff_ci") << "," << number_or_nan(pred, "granular_wall_seconds") << "\n";
   }
   scene::write_file_atomic(o.out_dir + "/sweep.csv", csv.str());
   scene::write_json_atomic(o.out_dir + "/sweep.json", rows);
@@ -160,8 +153,8 @@ nlohmann::json run_sweep(const std::string& scene_path, const std::vector<Vary>&
     std::map<std::string, Series> series;
     for (std::size_t k = 0; k < cases.size(); ++k) {
       const auto& pred = rows[k]["prediction"];
-      double y = num(pred, "shock_angle_deg");
-      if (!std::isfinite(y)) y = num(pred, "standoff");
+      double y = number_or_nan(pred, "shock_angle_deg");
+      if (!std::isfinite(y)) y = number_or_nan(pred, "standoff");
       if (!std::isfinite(y)) continue;
       const std::string label = cases[k].size() > 1 ? cases[k][1].first + " = " + cases[k][1].second : "granular";
       auto& s = series[label];

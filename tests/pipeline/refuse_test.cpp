@@ -46,3 +46,13 @@ TEST(Refuse, SubsonicSceneIsRefused) {
   expect_refusal(pipeline("run " + s + " --out " + fs::path(s).parent_path().string() + "/out"),
                  s + ": key 'freestream.mach': the pipeline needs a supersonic free stream");
 }
+
+TEST(Refuse, RejudgingOrReplayingWhatWasNeverRunIsAnInputError) {
+  const std::string s = fresh_scene("replay", "name: replay\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
+  const std::string dir = fs::path(s).parent_path().string();
+  expect_refusal(pipeline("verdict " + dir + "/none"), dir + "/none/summary.json: no such run summary");
+  expect_refusal(pipeline("league " + s + " --out " + dir + "/league --predictor granular --from-runs --docs " + dir +
+                          "/league.md"),
+                 dir + "/league/replay/summary_granular.json: no recorded summary");
+  EXPECT_FALSE(fs::exists(dir + "/league.md"));
+}

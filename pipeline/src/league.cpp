@@ -94,16 +94,6 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
 
 namespace {
 
-nlohmann::json recorded_summary(const std::string& path) {
-  if (!fs::is_regular_file(path))
-    throw scene::InputError(path + ": no recorded summary (run `pipeline league` without --from-runs first)");
-  try {
-    return nlohmann::json::parse(scene::read_file(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw scene::InputError(path + ": not JSON (" + e.what() + ")");
-  }
-}
-
 // The granular family against each other predictor's family at the
 // granular family's finest error, both families with their own predictor's
 // CPU: "faster" means the granular route reaches that error in less total CPU.
@@ -171,7 +161,9 @@ nlohmann::json run_league(const LeagueOptions& o) {
       ro.output_suffix = "_" + name;
       nlohmann::json sum;
       try {
-        sum = o.from_runs ? recorded_summary(ro.out_dir + "/summary_" + name + ".json") : run_pipeline(s, ro);
+        sum = o.from_runs ? read_run_summary(ro.out_dir + "/summary_" + name + ".json",
+                                             "no recorded summary (run `pipeline league` without --from-runs first)")
+                           : run_pipeline(s, ro);
       } catch (const scene::RunError& e) {
         scene::log_line("pipeline league: " + s.name + " / " + name + ": " + e.what(), true);
         md << "| " << name << " | failed: " << e.what() << " | | | | | |\n";

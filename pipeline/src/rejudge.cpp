@@ -16,15 +16,6 @@ namespace pipeline {
 
 namespace {
 
-nlohmann::json read_summary(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw scene::InputError(path + ": no such run summary");
-  try {
-    return nlohmann::json::parse(scene::read_file(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw scene::InputError(path + ": not JSON (" + e.what() + ")");
-  }
-}
-
 double required_number(const nlohmann::json& j, const char* key, const std::string& where) {
   const double v = number_or_nan(j, key);
   if (!std::isfinite(v)) throw scene::InputError(where + ": key '" + key + "' missing or not a number");
@@ -45,9 +36,17 @@ VerdictRun verdict_run(const nlohmann::json& r, const std::string& where) {
   return v;
 }
 
-}  // namespace
-
-namespace {
+// The recorded runs whose family name passes `keep`.
+template <typename Keep>
+std::vector<VerdictRun> runs_where(const nlohmann::json& summary, const std::string& path, Keep keep) {
+  if (!summary.contains("runs") || !summary["runs"].is_array())
+    throw scene::InputError(path + ": key 'runs' missing (not a `pipeline run` summary)");
+  std::vector<VerdictRun> out;
+  for (std::size_t k = 0; k < summary["runs"].size(); ++k)
+    if (keep(summary["runs"][k].value("family", "")))
+      out.push_back(verdict_run(summary["runs"][k], path + ": runs[" + std::to_string(k) + "]"));
+  return out;
+}
 
 struct RecordedRuns {
   std::vector<VerdictRun> clustered, uniform;
@@ -55,26 +54,18 @@ struct RecordedRuns {
   double predictor_cpu = 0;
 };
 
-RecordedRuns recorded_runs(const std::string& summary_path) {
-  const nlohmann::json s = read_summary(summary_path);
-  if (!s.contains("runs") || !s["runs"].is_array())
-    throw scene::InputError(summary_path + ": key 'runs' missing (not a `pipeline run` summary)");
-  std::vector<VerdictRun> clustered, uniform;
-  for (std::size_t k = 0; k < s["runs"].size(); ++k) {
-    const std::string where = summary_path + ": runs[" + std::to_string(k) + "]";
-    const VerdictRun v = verdict_run(s["runs"][k], where);
-    if (v.family == "uniform") uniform.push_back(v);
-    else if (v.family.rfind("clustered", 0) == 0) clustered.push_back(v);
-  }
+RecordedRuns recorded_runs(const nlohmann::json& s, const std::string& path) {
+  RecordedRuns rec;
+  rec.uniform = runs_where(s, path, [](const std::string& f) { return f == "uniform"; });
+  rec.clustered = runs_where(s, path, [](const std::string& f) { return f.rfind("clustered", 0) == 0; });
   const nlohmann::json details = s.value("verdict_details", nlohmann::json::object());
-  PrimaryError primary;
-  primary.name = s.value("primary_error", details.value("primary_error", ""));
-  primary.reference = details.value("primary_error_reference", "");
-  if (primary.name.empty()) throw scene::InputError(summary_path + ": key 'primary_error' missing");
-  const double predictor_cpu = number_or_nan(details, "predictor_cpu_seconds");
-  if (!std::isfinite(predictor_cpu))
-    throw scene::InputError(summary_path + ": key 'verdict_details.predictor_cpu_seconds' missing");
-  return {clustered, uniform, primary, predictor_cpu};
+  rec.primary.name = s.value("primary_error", details.value("primary_error", ""));
+  rec.primary.reference = details.value("primary_error_reference", "");
+  if (rec.primary.name.empty()) throw scene::InputError(path + ": key 'primary_error' missing");
+  rec.predictor_cpu = number_or_nan(details, "predictor_cpu_seconds");
+  if (!std::isfinite(rec.predictor_cpu))
+    throw scene::InputError(path + ": key 'verdict_details.predictor_cpu_seconds' missing");
+  return rec;
 }
 
 // Each grid's primary error measured again from its case.
@@ -94,44 +85,42 @@ void remeasure(const scene::Scene& s, const std::string& run_dir, const PrimaryE
   }
 }
 
-Verdict remeasured_verdict(const std::string& run_dir, nlohmann::json& errors) {
-  RecordedRuns rec = recorded_runs(run_dir + "/summary.json");
-  const scene::Scene s = scene::load_scene(run_dir + "/scene.resolved.yaml");
-  const PrimaryError primary = primary_error_for(s);
-  remeasure(s, run_dir, primary, rec.uniform, errors);
-  remeasure(s, run_dir, primary, rec.clustered, errors);
-  return make_verdict(primary, rec.clustered, rec.uniform, rec.predictor_cpu);
-}
-
 }  // namespace
+
+nlohmann::json read_run_summary(const std::string& path, const std::string& when_missing) {
+  if (!std::filesystem::is_regular_file(path)) throw scene::InputError(path + ": " + when_missing);
+  try {
+    return nlohmann::json::parse(scene::read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw scene::InputError(path + ": not JSON (" + e.what() + ")");
+  }
+}
 
 std::vector<VerdictRun> recorded_family(const nlohmann::json& summary, const std::string& path,
                                         const std::string& family) {
-  std::vector<VerdictRun> out;
-  if (!summary.contains("runs") || !summary["runs"].is_array())
-    throw scene::InputError(path + ": key 'runs' missing (not a `pipeline run` summary)");
-  for (std::size_t k = 0; k < summary["runs"].size(); ++k)
-    if (summary["runs"][k].value("family", "") == family)
-      out.push_back(verdict_run(summary["runs"][k], path + ": runs[" + std::to_string(k) + "]"));
-  return out;
+  return runs_where(summary, path, [&](const std::string& f) { return f == family; });
 }
 
 Verdict rejudge_summary(const std::string& summary_path) {
-  const RecordedRuns rec = recorded_runs(summary_path);
+  const RecordedRuns rec = recorded_runs(read_run_summary(summary_path, kNoRunSummary), summary_path);
   return make_verdict(rec.primary, rec.clustered, rec.uniform, rec.predictor_cpu);
-}
-
-Verdict rejudge_remeasured(const std::string& run_dir) {
-  nlohmann::json errors = nlohmann::json::object();
-  return remeasured_verdict(run_dir, errors);
 }
 
 std::string write_rejudged(const std::string& run_dir, bool remeasure_errors) {
   const std::string path = run_dir + "/summary.json";
+  const nlohmann::json summary = read_run_summary(path, kNoRunSummary);
+  RecordedRuns rec = recorded_runs(summary, path);
   nlohmann::json errors = nlohmann::json::object();
-  const Verdict v = remeasure_errors ? remeasured_verdict(run_dir, errors) : rejudge_summary(path);
+  if (remeasure_errors) {
+    // The primary error a new run of the resolved scene would choose.
+    const scene::Scene s = scene::load_scene(run_dir + "/scene.resolved.yaml");
+    rec.primary = primary_error_for(s);
+    remeasure(s, run_dir, rec.primary, rec.uniform, errors);
+    remeasure(s, run_dir, rec.primary, rec.clustered, errors);
+  }
+  const Verdict v = make_verdict(rec.primary, rec.clustered, rec.uniform, rec.predictor_cpu);
   nlohmann::json j;
-  j["scene"] = read_summary(path).value("scene", "");
+  j["scene"] = summary.value("scene", "");
   j["primary_error"] = v.primary.name;
   j["speedup_cfd"] = interval_json(v.speedup_cfd);
   j["speedup_total"] = interval_json(v.speedup_total);

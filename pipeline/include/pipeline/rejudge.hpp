@@ -12,15 +12,14 @@
 
 namespace pipeline {
 
+// A `pipeline run` summary read back (InputError naming the file: `path:
+// <when_missing>` when it is absent, "not JSON" when malformed).
+constexpr const char* kNoRunSummary = "no such run summary";
+nlohmann::json read_run_summary(const std::string& path, const std::string& when_missing);
+
 // The verdict of the runs recorded in `summary_path` (InputError naming the
 // file and key when a run lacks what the verdict needs).
 Verdict rejudge_summary(const std::string& summary_path);
-
-// The same with every grid's errors measured again from its CFD case
-// (RUNDIR/cfd/<grid>) by the current error measures, and the primary error
-// chosen for the resolved scene (RUNDIR/scene.resolved.yaml) as a new run
-// would; a case that cannot be read leaves that grid out of the fit.
-Verdict rejudge_remeasured(const std::string& run_dir);
 
 // The runs of one family ("uniform", "clustered", "clustered-adapt", ...)
 // recorded in a `pipeline run` summary read from `path` (named in errors).
@@ -28,8 +27,12 @@ std::vector<VerdictRun> recorded_family(const nlohmann::json& summary, const std
                                         const std::string& family);
 
 // verdict.json beside the summary: the verdict's details, the scene name,
-// with `remeasure` every grid's new errors, and the line `pipeline run`
-// prints; returns that line.
+// and the line `pipeline run` prints; returns that line. With `remeasure`,
+// every grid's errors are measured again from its CFD case
+// (RUNDIR/cfd/<grid>) by the current error measures, the primary error is
+// chosen for the resolved scene (RUNDIR/scene.resolved.yaml) as a new run
+// would, and the new errors are listed; a case that cannot be read leaves
+// that grid out of the fit.
 std::string write_rejudged(const std::string& run_dir, bool remeasure = false);
 
 }  // namespace pipeline

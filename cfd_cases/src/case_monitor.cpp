@@ -65,7 +65,7 @@ Snapshot CaseReader::read(const TimeDir& t) const {
     const auto p = read_scalar_field(dir + "/p", m.cells());
     for (std::size_t c = 0; c < m.cells(); ++c) {
       if (!(std::isfinite(rho[c]) && std::isfinite(p[c]) && rho[c] > 0 && p[c] > 0))
-        throw scene::RunError(fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
+        throw NonPhysicalState(fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
                                           rho[c], p[c], c, t.name, dir));
     }
     s.rho.insert(s.rho.end(), rho.begin(), rho.end());

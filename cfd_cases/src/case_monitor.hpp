@@ -6,6 +6,7 @@
 
 #include "case_setup.hpp"
 #include "cfd/foam_reader.hpp"
+#include "scene/errors.hpp"
 #include "scene/scene.hpp"
 
 namespace cfd {
@@ -26,13 +27,20 @@ struct HistoryRow {
   double wall_pressure_ratio = 0;
 };
 
+// A written time holds a non-finite or non-positive density or pressure:
+// the solution diverged.
+class NonPhysicalState : public scene::RunError {
+ public:
+  using scene::RunError::RunError;
+};
+
 class CaseReader {
  public:
   // np > 1: reads processor0..np-1 (the decomposed case).
   CaseReader(const scene::Scene& s, const std::string& case_dir, int np);
   // Written times after `after` (strictly), from the case or processor0.
   std::vector<TimeDir> times_after(double after) const;
-  // Throws scene::RunError when a field is not finite or rho, p <= 0.
+  // Throws NonPhysicalState when a field is not finite or rho, p <= 0.
   Snapshot read(const TimeDir& t) const;
   long cells() const;
   const std::vector<Mesh2D>& parts() const { return parts_; }

@@ -54,15 +54,19 @@ double seconds_since(Clock::time_point t0) {
 }
 
 // Why a solver run ended badly, from its exit code and log.
-std::string diagnose(int rc, const std::string& log_path) {
+struct Diagnosis {
+  std::string why;
+  bool diverged = false;
+};
+Diagnosis diagnose(int rc, const std::string& log_path) {
   const std::string log = scene::read_file(log_path);
   if (log.find("sigFpe") != std::string::npos || rc == 128 + SIGFPE)
-    return "the solution diverged (floating-point exception in rhoCentralFoam)";
+    return {"the solution diverged (floating-point exception in rhoCentralFoam)", true};
   if (log.find("Negative initial temperature") != std::string::npos || log.find("Negative temperature") != std::string::npos)
-    return "the solution diverged (negative temperature)";
+    return {"the solution diverged (negative temperature)", true};
   if (log.find("Maximum number of iterations exceeded") != std::string::npos)
-    return "the solution diverged (temperature iteration failed)";
-  return fmt::format("rhoCentralFoam failed (exit {})", rc);
+    return {"the solution diverged (temperature iteration failed)", true};
+  return {fmt::format("rhoCentralFoam failed (exit {})", rc), false};
 }
 
 [[noreturn]] void fail_run(const std::string& what, const std::string& log) {
@@ -75,13 +79,6 @@ std::string diagnose(int rc, const std::string& log_path) {
   throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps);
 }
 
-// A failure that is a divergence (the messages of diagnose and of the case
-// reader say so) is thrown as Diverged, any other as RunError.
-[[noreturn]] void fail_solver(const std::string& why, const std::string& log, double cpu, double wall,
-                              long steps) {
-  if (why.find("diverged") != std::string::npos) fail_diverged(why, log, cpu, wall, steps);
-  fail_run(why, log);
-}
 }  // namespace
 
 nlohmann::json CaseResult::summary() const {
@@ -230,10 +227,14 @@ class SolverWatch {
       Snapshot snap;
       try {
         snap = reader_.read(t);
+      } catch (const NonPhysicalState& e) {
+        solver_.terminate();
+        solver_.wait();
+        fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
       } catch (const scene::RunError& e) {
         solver_.terminate();
         solver_.wait();
-        fail_solver(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
+        fail_run(e.what(), solver_.log_path());
       }
       if (prev_) compare_with_previous(t, snap);
       prev_ = std::move(snap);
@@ -283,8 +284,11 @@ void finish_run(CaseResult& r, SolverWatch& watch, FoamProcess& solver, const sc
   r.cpu_seconds += solver.cpu_seconds();
   // Ready for a rerun by hand (Allrun) from the latest time.
   set_control(cdir, "stopAt", "endTime");
-  if (rc != 0 && !watch.stop_requested())
-    fail_solver(diagnose(rc, solver.log_path()), solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
+  if (rc != 0 && !watch.stop_requested()) {
+    const Diagnosis d = diagnose(rc, solver.log_path());
+    if (d.diverged) fail_diverged(d.why, solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
+    fail_run(d.why, solver.log_path());
+  }
   r.steady_state_reached = watch.steady();
   watch.progress().finish(r.steady_state_reached ? watch.rule().why()
                                                  : "not steady; " + watch.rule().why());

@@ -131,7 +131,6 @@ std::string predictor_dir(const std::string& out_dir, const std::string& name) {
   return name == "granular" ? out_dir : out_dir + "/predict/" + name;
 }
 
-
 }  // namespace
 
 // Clustered grids of the default predictor keep their historic names.
@@ -141,23 +140,26 @@ std::string clustered_family(const std::string& predictor) {
 
 std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
 
-double calibration_cost(const scene::Scene& s, const std::string& table_path) {
-  if (!s.body || s.granular.restitution_given) return kNaN;
-  const std::string path = calibration_path(s, table_path);
-  return fs::exists(path) ? read_calibration(path).cpu_seconds : kNaN;
-}
+namespace {
 
-std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
-  if (!s.body || s.granular.restitution_given) return "";
+// The table applied to the scene (apply_calibration), and what the table
+// cost to make: NaN when the scene sets its restitution or there is no table.
+struct AppliedCalibration {
+  std::string note;
+  double cpu_seconds = kNaN;
+};
+
+AppliedCalibration calibrate_scene(scene::Scene& s, const std::string& table_path) {
+  if (!s.body || s.granular.restitution_given) return {};
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
   // wedges that the report states.
   const std::optional<double> angle_deg = scene::calibration_angle_deg(*s.body);
   const std::string path = calibration_path(s, table_path);
-  if (!fs::exists(path)) return "no calibration table at " + path + "; restitution left at its default";
+  if (!fs::exists(path)) return {"no calibration table at " + path + "; restitution left at its default"};
   const auto t = read_calibration(path);
   const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
-  if (!e) return "";
+  if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
@@ -165,7 +167,13 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
                 angle_deg ? ""
                           : " (by Mach number alone: the table is calibrated on wedges, so this is "
                             "an extrapolation)");
-  return buf;
+  return {buf, t.cpu_seconds};
+}
+
+}  // namespace
+
+std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
+  return calibrate_scene(s, table_path).note;
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
@@ -227,8 +235,9 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   scene::make_dirs(o.out_dir);
   const scene::DirLock lock(o.out_dir);
-  const double calib_cpu = o.predictor == "granular" ? calibration_cost(s, o.calibration_path) : kNaN;
-  const std::string calib_note = apply_calibration(s, o.calibration_path);
+  const AppliedCalibration calib = calibrate_scene(s, o.calibration_path);
+  const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
+  const std::string& calib_note = calib.note;
   if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));
   const auto& levels = s.pipeline.levels;

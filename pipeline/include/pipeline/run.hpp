@@ -26,9 +26,6 @@ struct RunOptions {
 // Applies the calibration table when the scene leaves granular.restitution
 // unset (wedges only); returns a note for the report ("" if nothing changed).
 std::string apply_calibration(scene::Scene& s, const std::string& table_path);
-// CPU seconds the table that apply_calibration would use cost to make; NaN
-// when the scene sets its restitution, or the table records no cost.
-double calibration_cost(const scene::Scene& s, const std::string& table_path);
 
 // The family name of a predictor's clustered grids in runs[] ("clustered"
 // for granular, "clustered-<name>" otherwise).

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "case_setup.hpp"
 #include "cfd/foam_reader.hpp"
 #include "cfd/run_case.hpp"
@@ -29,6 +31,21 @@ constexpr double kParallelTol = 1e-8;
 constexpr double kFreestreamTol = 1e-6;
 // LTS and time-accurate steady wall pressures agree within this.
 constexpr double kLtsTol = 0.01;
+
+// With the ranks counted, a parallel run costs about the serial CPU or more
+// (MPI adds work); without them it would be mpirun's own few milliseconds.
+constexpr double kRanksCounted = 0.5;
+constexpr double kMicro = 1e6;
+
+// The run's CPU accounting as summary.json reports it.
+void expect_cpu_summary(const cfd::CaseResult& r) {
+  const nlohmann::json j = nlohmann::json::parse(scene::read_file(r.case_dir + "/summary.json"));
+  EXPECT_DOUBLE_EQ(j.at("cpu_seconds").get<double>(), r.cpu_seconds);
+  EXPECT_DOUBLE_EQ(
+      j.at("cpu_us_per_cell_step").get<double>(),
+      r.cpu_seconds * kMicro / (static_cast<double>(r.cells) * static_cast<double>(r.steps)));
+  EXPECT_TRUE(j.contains("wall_seconds"));
+}
 
 double exact_ratio(double mach, double deg) {
   return scene::oblique_pressure_ratio(mach, *scene::oblique_shock_beta(mach, deg * kDeg, 1.4), 1.4);
@@ -98,7 +115,10 @@ TEST(Case, SteadyStateIsDetectedAndTheRunStopped) {
   EXPECT_NEAR(v, scene::oblique_downstream_mach(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 10 * kDeg, 1.4), 0.05);
 }
 
-TEST(Case, ParallelEqualsSerial) {
+// One serial and one 2-rank run of the same case: the same fields, and each
+// run's CPU (the solver's, every rank under mpirun, and decomposePar /
+// reconstructPar's) beside wall time in CaseResult and summary.json.
+TEST(Case, ParallelEqualsSerialAndBothReportTheirCpu) {
   // steady_tol tiny: both runs go to end_time, so they end at the same time.
   const scene::Scene s = cfd_test::wedge_scene(3.0, 10.0, "{end_time: 0.6, steady_tol: 1e-12}");
   const std::string d = cfd_test::scratch_dir();
@@ -121,6 +141,10 @@ TEST(Case, ParallelEqualsSerial) {
     EXPECT_LT(worst, kParallelTol) << f;
   }
   EXPECT_NEAR(serial.wall_pressure_ratio, par.wall_pressure_ratio, kParallelTol);
+  EXPECT_GT(serial.cpu_seconds, 0.0);
+  EXPECT_GT(par.cpu_seconds, kRanksCounted * serial.cpu_seconds);
+  expect_cpu_summary(serial);
+  expect_cpu_summary(par);
 }
 
 TEST(Case, DivergenceIsRunErrorAndTheCaseIsKept) {

@@ -81,6 +81,10 @@ std::string limiter(const scene::Scene& s) {
   return attached_wedge(s) ? "vanLeer" : "Minmod";
 }
 
+bool local_time_stepping(const scene::Scene& s) {
+  return s.cfd.local_time_stepping.value_or(s.body && scene::lts_matches_time_accurate(*s.body));
+}
+
 std::string template_dir() {
   std::vector<std::string> c;
   if (const char* e = std::getenv("SHOCKGRAIN_CFD_TEMPLATES")) c.emplace_back(e);

@@ -43,6 +43,9 @@ inline constexpr double kLtsSmoothingCoeff = 1.0;
 bool start_at_rest(const scene::Scene& s);
 // The reconstruction limiter (cfd.limiter, resolved for "auto").
 std::string limiter(const scene::Scene& s);
+// Whether the case uses local time stepping (cfd.local_time_stepping,
+// resolved for "auto").
+bool local_time_stepping(const scene::Scene& s);
 
 // Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
 std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,

@@ -140,7 +140,7 @@ Schedule schedule(const scene::Scene& s, const CaseOptions& o, const Mesh2D& mes
   Schedule out;
   CaseSettings& cs = out.settings;
   cs.np = o.np > 1 ? o.np : p.np;
-  cs.lts = o.local_time_stepping.value_or(p.local_time_stepping);
+  cs.lts = o.local_time_stepping.value_or(local_time_stepping(s));
   cs.flow_through = d.width() / f.mach;
   cs.dt_ref = free_stream_time_step(mesh, f, p.max_co);
   cs.lts_smoothing = o.lts_smoothing.value_or(kLtsSmoothingCoeff);

@@ -16,7 +16,7 @@ CfdParams parse_cfd(Section& s) {
   p.write_interval = s.number("write_interval", p.write_interval, positive());
   p.steady_tol = s.number("steady_tol", p.steady_tol, positive());
   p.force_tol = s.number("force_tol", p.force_tol, positive());
-  p.local_time_stepping = s.boolean("local_time_stepping", p.local_time_stepping);
+  p.local_time_stepping = s.boolean_or_auto("local_time_stepping");
   p.np = static_cast<int>(s.integer("np", p.np, 1, 4096));
   p.flux_scheme = s.string("flux_scheme", p.flux_scheme, {"Kurganov", "Tadmor"});
   p.limiter = s.string("limiter", p.limiter, {"auto", "vanLeer", "Minmod"});
@@ -38,7 +38,10 @@ void emit_cfd(YAML::Emitter& e, const CfdParams& p) {
   emit_kv(e, "write_interval", p.write_interval);
   emit_kv(e, "steady_tol", p.steady_tol);
   emit_kv(e, "force_tol", p.force_tol);
-  emit_kv(e, "local_time_stepping", p.local_time_stepping);
+  if (p.local_time_stepping)
+    emit_kv(e, "local_time_stepping", *p.local_time_stepping);
+  else
+    emit_kv(e, "local_time_stepping", std::string("auto"));
   emit_kv(e, "np", p.np);
   emit_kv(e, "flux_scheme", p.flux_scheme);
   emit_kv(e, "limiter", p.limiter);

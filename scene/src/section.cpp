@@ -123,6 +123,16 @@ bool Section::boolean(const std::string& key, bool def) {
   return b;
 }
 
+std::optional<bool> Section::boolean_or_auto(const std::string& key) {
+  const YAML::Node n = get(key);
+  if (absent(n)) return std::nullopt;
+  if (n.IsScalar() && n.Scalar() == "auto") return std::nullopt;
+  bool b = false;
+  if (!n.IsScalar() || !YAML::convert<bool>::decode(n, b))
+    fail_node(n, key, "expected true, false or auto, got " + scalar_text(n));
+  return b;
+}
+
 std::optional<std::string> Section::opt_string(const std::string& key,
                                                const std::vector<std::string>& allowed) {
   const YAML::Node n = get(key);

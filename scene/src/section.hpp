@@ -36,6 +36,8 @@ class Section {
   std::int64_t integer(const std::string& key, std::int64_t def, std::int64_t lo, std::int64_t hi);
   std::optional<std::int64_t> opt_integer(const std::string& key, std::int64_t lo, std::int64_t hi);
   bool boolean(const std::string& key, bool def);
+  // true | false | auto (nullopt; also when absent).
+  std::optional<bool> boolean_or_auto(const std::string& key);
   std::string string(const std::string& key, const std::string& def,
                      const std::vector<std::string>& allowed = {});
   std::optional<std::string> opt_string(const std::string& key,

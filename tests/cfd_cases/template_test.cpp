@@ -66,4 +66,30 @@ TEST(Params, CfdSectionRejectsUnknownFluxScheme) {
   }
 }
 
+TEST(Params, LocalTimeSteppingAutoFollowsTheBodyKind) {
+  // auto: LTS where it is measured to reach the time-accurate steady state
+  // (wedges, discs), time-accurate for the capsule's separated afterbody.
+  EXPECT_TRUE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0)));
+  EXPECT_TRUE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: auto}")));
+  EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: false}")));
+  const auto body = [](const std::string& b) {
+    return scene::parse_scene("name: t\nbody: " + b + "\nfreestream: {mach: 4}\n");
+  };
+  EXPECT_TRUE(cfd::local_time_stepping(body("{kind: disc, radius: 0.5}")));
+  EXPECT_FALSE(cfd::local_time_stepping(body("{kind: apollo, diameter: 1.0}")));
+  const scene::Scene forced =
+      scene::parse_scene("name: t\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 4}\ncfd: {local_time_stepping: true}\n");
+  EXPECT_TRUE(cfd::local_time_stepping(forced));
+}
+
+TEST(Params, LocalTimeSteppingRejectsOtherWords) {
+  try {
+    (void)cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: sometimes}");
+    FAIL() << "expected InputError";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cfd.local_time_stepping"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("auto"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

@@ -32,8 +32,7 @@ constexpr double kCpuPerCase = 1.5;
 constexpr double kMeshCpuPerCell = 2e-5;
 constexpr double kMeshCpuPerGrid = 1.0;
 // A clustered grid grades from h_min to h_max at ratio `growth`: per unit
-// shock length and side, the graded layers hold sum 1/h_k ~ 1/(h_min (1 - 1/growth)) cells;
-// per unit length of body surface (one side, the fluid's) the same from h_body.
+// shock length and side, the graded layers hold sum 1/h_k ~ 1/(h_min (1 - 1/growth)) cells.
 // The granular predictor's cost on the case studies (CPU seconds).
 constexpr double kGranularPredictorCpu = 30.0;
 
@@ -101,9 +100,13 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
       constexpr double kDefaultBandCells = 3.0;
       const double w = std::max(band, kDefaultBandCells * h);
       const double graded = 2.0 * shock / (h * (1.0 - 1.0 / s.mesh.growth));
-      // meshgen's body rule: h_min at the wall unless mesh.h_body says otherwise.
+      // meshgen's body rule, h = h_body + (growth - 1) d from the wall (h_body = h_min unless
+      // mesh.h_body says otherwise): per unit wall length its layers hold
+      // int (1/h^2 - 1/H^2) dd = (1/h_body - 1/H)/(growth - 1) - (H - h_body)/((growth - 1) H^2)
+      // cells beyond the far field's (the shock band overlaps them near an apex: an overestimate).
       const double h_body = std::clamp(s.mesh.h_body ? *s.mesh.h_body * L * level : h, h, H);
-      const double at_body = body / (h_body * (1.0 - 1.0 / s.mesh.growth));
+      const double slope = s.mesh.growth - 1.0;
+      const double at_body = body * ((1.0 / h_body - 1.0 / H) / slope - (H - h_body) / (slope * H * H));
       const double cells = kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + at_body + area / (H * H));
       e.grids.push_back(grid(s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
                              cells, h));

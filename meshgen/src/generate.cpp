@@ -168,6 +168,18 @@ void check_estimate(const std::string& where, double estimate, double h_min, dou
                           fmt_g(kMaxCells) + "; raise mesh.h_min / mesh.h_max or lower the target");
 }
 
+// Cell size on the body surface (scene coordinates). The wall is where the
+// flow is turned: the slip condition sets the flow direction that fixes an
+// attached shock's angle from the apex on and a bow shock's stand-off from
+// the stagnation region, so by default it is resolved like the shock, at
+// h_min (as the uniform grid of that h_min resolves it), and grows from
+// there at the grid's growth rate. An explicit h_body (request, then scene)
+// overrides it, within [h_min, h_max].
+double body_size(const MeshRequest& r, const scene::MeshParams& mp, const SizeParams& base, double L) {
+  const std::optional<double> h_body = r.h_body ? r.h_body : mp.h_body;
+  return h_body ? std::clamp(*h_body * L, base.h_min, base.h_max) : base.h_min;
+}
+
 // The plan of a request, refused (InputError) before anything is written
 // when the scene is subsonic, a size is not finite or out of range, or the
 // estimated cell count is beyond kMaxCells.
@@ -186,12 +198,13 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   plan.base.h_min = r.h_min.value_or(mp.h_min) * L;
   plan.base.h_max = r.h_max.value_or(mp.h_max) * L;
   check_sizes(where, r.h_min.value_or(mp.h_min), r.h_max.value_or(mp.h_max), r.target_cells);
+  if (r.h_body && !(std::isfinite(*r.h_body) && *r.h_body > 0))
+    throw scene::InputError(where + "h_body must be a finite positive number (body lengths), got " + fmt_g(*r.h_body));
   if (r.h_min && !r.h_max) plan.base.h_max = std::max(plan.base.h_max, plan.base.h_min);
   if (r.h_max && !r.h_min) plan.base.h_min = std::min(plan.base.h_min, plan.base.h_max);
   if (!(plan.base.h_min > 0) || plan.base.h_min > plan.base.h_max)
     throw scene::InputError(where + "h_min must be positive and not exceed h_max");
-  plan.base.h_body = std::clamp(mp.h_body ? *mp.h_body * L : std::sqrt(plan.base.h_min * plan.base.h_max),
-                                plan.base.h_min, plan.base.h_max);
+  plan.base.h_body = body_size(r, mp, plan.base, L);
   plan.base.growth = mp.growth;
   plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
   if (mp.band_width) plan.band_width = *mp.band_width * L;

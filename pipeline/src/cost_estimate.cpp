@@ -58,6 +58,14 @@ double shock_length(const scene::Scene& s) {
   return kBowLengthPerHeight * d.height();
 }
 
+// Length of the body surface inside the domain (scene units).
+double body_surface_length(const scene::Scene& s) {
+  const std::vector<scene::Vec2> outline = scene::clipped_outline(scene::make_body(*s.body), scene::scene_domain(s));
+  double len = 0.0;
+  for (std::size_t i = 0; i + 1 < outline.size(); ++i) len += scene::norm(outline[i + 1] - outline[i]);
+  return len;
+}
+
 double steps_for(const scene::Scene& s, double h_min) {
   const scene::Domain d = scene::scene_domain(s);
   const double mach = s.freestream.mach;
@@ -80,7 +88,7 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, 
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
   RunEstimate e;
   const double L = scene::body_length(*s.body);
-  const double area = fluid_area(s), shock = shock_length(s);
+  const double area = fluid_area(s), shock = shock_length(s), body = body_surface_length(s);
   const double band = s.mesh.band_width.value_or(0.0) * L;
   for (const double level : s.pipeline.levels) {
     const double h = s.mesh.h_min * L * level;
@@ -92,7 +100,14 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
       constexpr double kDefaultBandCells = 3.0;
       const double w = std::max(band, kDefaultBandCells * h);
       const double graded = 2.0 * shock / (h * (1.0 - 1.0 / s.mesh.growth));
-      const double cells = kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + area / (H * H));
+      // meshgen's body rule, h = h_body + (growth - 1) d from the wall (h_body = h_min unless
+      // mesh.h_body says otherwise): per unit wall length its layers hold
+      // int (1/h^2 - 1/H^2) dd = (1/h_body - 1/H)/(growth - 1) - (H - h_body)/((growth - 1) H^2)
+      // cells beyond the far field's (the shock band overlaps them near an apex: an overestimate).
+      const double h_body = std::clamp(s.mesh.h_body ? *s.mesh.h_body * L * level : h, h, H);
+      const double slope = s.mesh.growth - 1.0;
+      const double at_body = body * ((1.0 / h_body - 1.0 / H) / slope - (H - h_body) / (slope * H * H));
+      const double cells = kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + at_body + area / (H * H));
       e.grids.push_back(grid(s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
                              cells, h));
     }

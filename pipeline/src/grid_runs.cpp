@@ -117,6 +117,8 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
   req.uniform = !clustered;
   req.h_min = s_.mesh.h_min * level;
   req.h_max = clustered ? s_.mesh.h_max * level : s_.mesh.h_min * level;
+  // An explicit body size is refined with the other sizes of the ladder.
+  if (clustered && s_.mesh.h_body) req.h_body = *s_.mesh.h_body * level;
   const scene::CpuStopwatch cpu;
   const auto m = meshgen::generate_mesh(s_, req, cache_.dir(stage));
   nlohmann::json msum = m.summary();

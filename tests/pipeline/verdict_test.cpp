@@ -202,3 +202,19 @@ TEST(CostEstimate, UniformWedgeGridWithinTheStatedAccuracy) {
   }
   EXPECT_NO_THROW(pipeline::check_budget(s, e, true));
 }
+
+// The clustered grids' estimate follows meshgen's body rule: a wall at
+// h_min (the default) costs more cells than one left at h_max.
+TEST(CostEstimate, ClusteredEstimateCountsTheBodyLayers) {
+  auto s = scene::load_scene(std::string(SOURCE_DIR) + "/tests/data/wedge_verdict.yaml");
+  const auto clustered_cells = [&] {
+    const auto e = pipeline::estimate_run(s, "correlation");
+    const auto it = std::find_if(e.grids.begin(), e.grids.end(),
+                                 [](const auto& g) { return g.name == "clustered-correlation_h2"; });
+    EXPECT_NE(it, e.grids.end());
+    return it == e.grids.end() ? 0.0 : it->cells;
+  };
+  const double wall_at_h_min = clustered_cells();
+  s.mesh.h_body = s.mesh.h_max;
+  EXPECT_GT(wall_at_h_min, clustered_cells());
+}

@@ -23,6 +23,7 @@ struct MeshRequest {
   std::vector<double> shock_ci;          // 95% half-width per point along the normal; may be empty
   std::optional<double> h_min, h_max;    // override scene.mesh (body lengths); uniform: h_min is its size
   std::optional<double> target_cells;    // override scene.mesh.target_cells (wins over h_min/h_max)
+  std::optional<double> h_body;          // override scene.mesh.h_body (body lengths; clustered and adapted)
   // An adapted grid instead of a clustered one: target sizes from the
   // lattice field "h" (body lengths), clamped to [h_min, h_max]; whatever
   // made them (size_field.hpp).

@@ -3,15 +3,15 @@
 // built round (clipped to the flow region). Pure geometry: no gmsh here, so
 // it can be tested and integrated (cell-count estimates) on its own.
 //
-//   h = min(h_shock, h_body, h_max)
+//   h = min(h_shock, h_wall, h_max)
 //   h_shock = h_min                             within the band, d <= w
 //           = h_min + (growth - 1) (d - w)      outside it
-//   h_body  = h_body0 + (growth - 1) d_body
+//   h_wall  = h_body + (growth - 1) d_body      (h_body: h_min by default)
 // A size that grows by (growth - 1) per unit distance makes each cell
 // `growth` times its neighbour: h(d + h) = h (1 + growth - 1).
 //
 // An adapted field takes h from a lattice instead of the shock band:
-//   h = min(clamp(scale * h_lattice, h_min, h_max), h_body)
+//   h = min(clamp(scale * h_lattice, h_min, h_max), h_wall)
 // with h_lattice interpolated bilinearly between cell centres (and held at
 // the outermost centres beyond them): the same body rule as the clustered
 // grids, whatever made the lattice.

@@ -12,7 +12,7 @@ struct MeshParams {
   double growth = 1.2;               // bounded size ratio between neighbouring cells
   std::optional<double> target_cells;  // if set, scales the sizes to meet it within 10%
   bool recombine = true;             // quad-dominant (triangles otherwise)
-  std::optional<double> h_body;      // cell size at the body; default sqrt(h_min * h_max)
+  std::optional<double> h_body;      // cell size at the body surface; default h_min (docs/meshgen.md)
   std::optional<double> h_uniform;   // cell size of the uniform grid; default h_min
   std::string algorithm = "delaunay";  // gmsh 2D algorithm: delaunay (fast) | frontal (better cells)
   int smoothing = 1;                 // gmsh Laplacian smoothing passes (~2 s CPU per 100k cells each)

@@ -84,16 +84,4 @@ bool correlation_is_exact_shape(const BodySpec& b) {
   return false;
 }
 
-bool lts_matches_time_accurate(const BodySpec& b) {
-  switch (b.kind) {
-    case BodyKind::wedge:
-    case BodyKind::disc:
-      return true;
-    case BodyKind::apollo:
-    case BodyKind::polygon:
-      return false;
-  }
-  return false;
-}
-
 }  // namespace scene

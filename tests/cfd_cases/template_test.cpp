@@ -67,15 +67,16 @@ TEST(Params, CfdSectionRejectsUnknownFluxScheme) {
 }
 
 TEST(Params, LocalTimeSteppingAutoFollowsTheBodyKind) {
-  // auto: LTS where it is measured to reach the time-accurate steady state
-  // (wedges, discs), time-accurate for the capsule's separated afterbody.
+  // auto: LTS for attached-shock wedges (free-stream start), time-accurate
+  // for blunt bodies and detached wedges (start at rest).
   EXPECT_TRUE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0)));
   EXPECT_TRUE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: auto}")));
   EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: false}")));
   const auto body = [](const std::string& b) {
     return scene::parse_scene("name: t\nbody: " + b + "\nfreestream: {mach: 4}\n");
   };
-  EXPECT_TRUE(cfd::local_time_stepping(body("{kind: disc, radius: 0.5}")));
+  EXPECT_FALSE(cfd::local_time_stepping(body("{kind: disc, radius: 0.5}")));
+  EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(2.0, 30.0)));  // detached
   EXPECT_FALSE(cfd::local_time_stepping(body("{kind: apollo, diameter: 1.0}")));
   const scene::Scene forced =
       scene::parse_scene("name: t\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 4}\ncfd: {local_time_stepping: true}\n");

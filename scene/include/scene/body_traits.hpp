@@ -37,12 +37,4 @@ double correlation_nose_radius(const BodySpec& b);
 // True when that radius is the body's own nose radius (no approximation).
 bool correlation_is_exact_shape(const BodySpec& b);
 
-// True when local time stepping has been measured to stop at the same steady
-// state as time-accurate stepping for this body kind (wedges: wall pressure
-// to 0.05 %; discs: body force to 0.03 %, docs/bench_cfd.md). False where it
-// has not: the Apollo capsule's separated afterbody settles to a body force
-// 8-34 % off the time-accurate one, and a polygon may hold a notch whose flow
-// never becomes steady, where pseudo-time means nothing.
-bool lts_matches_time_accurate(const BodySpec& b);
-
 }  // namespace scene

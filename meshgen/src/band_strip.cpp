@@ -14,6 +14,10 @@ namespace {
 // neighbouring columns then meet at that angle at most, which is what the
 // strip adds to the grid's non-orthogonality.
 constexpr double kCurvatureCells = 0.1;
+// Where the prediction's ci (the band's half-width) changes along the shock,
+// a cell's length keeps that change under kWidthChangeCells h_min, so the
+// columns' rows do not shear from one column to the next.
+constexpr double kWidthChangeCells = 1.0;
 // Neighbouring along-shock lengths differ by at most this factor.
 constexpr double kAlongGrowth = 1.2;
 // Rows beyond the band grow by kGrowthRows until one reaches l / kEdgeJump:
@@ -94,7 +98,7 @@ struct Polyline {
 
 // Row offsets at scale 1: the band in equal rows of at most h_min, then
 // growth rows out to l / kEdgeJump, mirrored.
-std::vector<double> make_rows(double w_max, double h_min, double l_max, std::size_t& band_rows) {
+std::vector<double> make_rows(double w_max, double h_min, double l_max) {
   const int n = std::max(1, static_cast<int>(std::ceil(w_max / h_min - 1e-9)));
   std::vector<double> half{0.0};
   for (int k = 1; k <= n; ++k) half.push_back(w_max * k / n);
@@ -103,7 +107,6 @@ std::vector<double> make_rows(double w_max, double h_min, double l_max, std::siz
     t *= kGrowthRows;
     half.push_back(half.back() + t);
   }
-  band_rows = 2 * static_cast<std::size_t>(n);
   std::vector<double> rows;
   for (auto it = half.rbegin(); it != half.rend(); ++it) rows.push_back(-*it);
   for (std::size_t k = 1; k < half.size(); ++k) rows.push_back(half[k]);
@@ -139,7 +142,10 @@ std::vector<double> station_positions(const Polyline& line, const StripRule& rul
   double prev = l_max;
   while (s.back() < line.length()) {
     const double k = line.curvature(s.back(), window);
+    const double dw =
+        std::abs(line.width(s.back() + window) - line.width(s.back() - window)) / (2 * window);
     double l = k > 0 ? std::min(l_max, kCurvatureCells / k) : l_max;
+    if (dw > 0) l = std::min(l, kWidthChangeCells * rule.h_min / dw);
     l = std::clamp(std::min(l, prev * kAlongGrowth), rule.h_min, l_max);
     s.push_back(s.back() + l);
     prev = l;
@@ -210,7 +216,7 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     const Polyline line(run);
     const double w_max = *std::max_element(run.half_width.begin(), run.half_width.end());
     ShockStrip strip;
-    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_max, strip.band_rows);
+    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_max);
     const double half_width = strip.rows.back();
     const BoundaryDistance dist(region, kBoundarySag * rule.h_min, half_width + 2 * margin);
     const std::vector<double> s = station_positions(line, rule);
@@ -231,7 +237,6 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     }
     ShockStrip kept;
     kept.rows = strip.rows;
-    kept.band_rows = strip.band_rows;
     for (std::size_t i = a; i < b; ++i) {
       kept.centre.push_back(strip.centre[i]);
       kept.normal.push_back(strip.normal[i]);

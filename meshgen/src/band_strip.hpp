@@ -10,9 +10,10 @@
 // mean size whatever the tensor, so the band is built explicitly instead.
 //
 // Along-shock cell length at a station (the rule, docs/meshgen.md):
-//   l = min(a h_min, kCurvatureCells R)
-// a = mesh.anisotropy, R the shock's radius of curvature measured over a
-// window of a h_min either side; the length grows by at most kAlongGrowth
+//   l = min(a h_min, kCurvatureCells R, kWidthChangeCells h_min / |dw/ds|)
+// a = mesh.anisotropy, R the shock's radius of curvature and dw/ds the
+// change of the band half-width w (the prediction's ci) along the shock,
+// both measured over a window of a h_min either side; l grows by at most kAlongGrowth
 // from one cell to the next. Rows across the shock: the band (half-width w,
 // ci included) in rows of at most h_min, then kGrowthRows-ratio rows out to a
 // row of l / kEdgeJump, where the isotropic grid (size l there) takes over.
@@ -39,7 +40,6 @@ struct ShockStrip {
   std::vector<double> scale;  // w_i / w_max: the band widens where ci does
   std::vector<double> rows;   // offsets at scale 1, ascending, symmetric about 0
   std::vector<double> along;  // station spacing l (one per cell, stations - 1)
-  std::size_t band_rows = 0;  // rows inside the band (the rest are growth rows)
 
   std::size_t stations() const { return centre.size(); }
   scene::Vec2 node(std::size_t i, std::size_t j) const {
@@ -82,9 +82,9 @@ class BandSize {
   double h_max_;
 };
 
-// Band cell shape: aspect = longest / shortest extent of the cell over its
-// principal directions (the extent along the local shock normal, the
-// cell's thickness across the shock, is reported too).
+// Band cell shape in the local shock frame (the nearest shock segment):
+// aspect = the larger over the smaller of the cell's extents along the
+// shock and across it; thickness = its extent across the shock.
 struct BandShape {
   double max_aspect = 0.0, mean_aspect = 0.0;
   double max_thickness = 0.0;  // extent along the nearest shock segment's normal

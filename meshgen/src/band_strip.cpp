@@ -72,13 +72,24 @@ struct Polyline {
     const Vec2 a = at(t - half), b = at(t + half);
     return scene::normalized(b - a);
   }
-  // Curvature: the turn of the tangent across a window `half` either side.
+  // Curvature: the turn between the chord tangents at t - half and t + half
+  // (each `half` long), over the distance between the chords' centres.
   double curvature(double t, double half) const {
+    const auto chord = [&](double c) {
+      // Chords stay whole: their centres are kept half a chord inside the run.
+      const double q = std::min(0.5 * half, 0.5 * length());
+      c = std::clamp(c, q, length() - q);
+      return std::pair{scene::normalized(at(c + q) - at(c - q)), c};
+    };
+    const auto [ta, ca] = chord(t - half);
+    const auto [tb, cb] = chord(t + half);
+    if (cb - ca <= 0) return 0.0;
+    return std::atan2(std::abs(scene::cross(ta, tb)), scene::dot(ta, tb)) / (cb - ca);
+  }
+  // |dw/ds| over [t - half, t + half], clamped to the run.
+  double width_slope(double t, double half) const {
     const double lo = std::max(t - half, 0.0), hi = std::min(t + half, length());
-    if (hi - lo <= 0) return 0.0;
-    const Vec2 ta = tangent(lo, 0.5 * half), tb = tangent(hi, 0.5 * half);
-    const double turn = std::atan2(std::abs(scene::cross(ta, tb)), scene::dot(ta, tb));
-    return turn / (hi - lo);
+    return hi > lo ? std::abs(width(hi) - width(lo)) / (hi - lo) : 0.0;
   }
   // The piece [a, b] as a run.
   ShockRun piece(double a, double b) const {
@@ -142,8 +153,7 @@ std::vector<double> station_positions(const Polyline& line, const StripRule& rul
   double prev = l_max;
   while (s.back() < line.length()) {
     const double k = line.curvature(s.back(), window);
-    const double dw =
-        std::abs(line.width(s.back() + window) - line.width(s.back() - window)) / (2 * window);
+    const double dw = line.width_slope(s.back(), window);
     double l = k > 0 ? std::min(l_max, kCurvatureCells / k) : l_max;
     if (dw > 0) l = std::min(l, kWidthChangeCells * rule.h_min / dw);
     l = std::clamp(std::min(l, prev * kAlongGrowth), rule.h_min, l_max);
@@ -216,10 +226,13 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     const Polyline line(run);
     const double w_max = *std::max_element(run.half_width.begin(), run.half_width.end());
     ShockStrip strip;
-    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_max);
+    const std::vector<double> s = station_positions(line, rule);
+    // Growth rows end at the longest cell this strip has, not at a h_min.
+    double l_run = rule.h_min;
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
+    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_run);
     const double half_width = strip.rows.back();
     const BoundaryDistance dist(region, kBoundarySag * rule.h_min, half_width + 2 * margin);
-    const std::vector<double> s = station_positions(line, rule);
     for (const double t : s) {
       strip.centre.push_back(line.at(t));
       strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));

@@ -279,7 +279,7 @@ struct Meshed {
   double gmsh_cpu = 0.0;      // CPU time of every attempt
   double estimate = 0.0;      // cells estimated for the last attempt
   int attempts = 0;
-  BandLayout band;            // shock-aligned strips (mesh.anisotropy > 1)
+  BandLayout band;  // shock-aligned strips (mesh.anisotropy > 1)
 };
 
 // gmsh on the plan's field, or round shock-aligned strips when the plan asks
@@ -291,7 +291,8 @@ PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField
   const SizeParams& p = m.sizing.params;
   m.band = layout_strips(m.sizing.runs, region, {p.h_min, plan.anisotropy, p.h_max, p.growth});
   const BandSize size(p, m.band, region.body.polyline);
-  return mesh_with_gmsh_in_child(region, [&size](Vec2 q) { return size(q); }, m.band.strips, job, scratch);
+  const SizeFunction h = [&size](Vec2 q) { return size(q); };
+  return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
 }
 
 Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
@@ -449,7 +450,9 @@ nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const Fluid
   j["band_cells"] = sizes.band_cells;
   j["band_max_cell_size"] =
       sizes.band_cells ? nlohmann::json(sizes.band_max) : nlohmann::json(nullptr);
-  const auto band_figure = [&](double v) { return sizes.band_cells ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  const auto band_figure = [&](double v) {
+    return sizes.band_cells ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
   j["anisotropy"] = plan.anisotropy;
   j["band_max_aspect_ratio"] = band_figure(sizes.band_shape.max_aspect);
   j["band_mean_aspect_ratio"] = band_figure(sizes.band_shape.mean_aspect);

@@ -99,10 +99,13 @@ PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<int>& v
     gmsh::model::mesh::getElements(types, elems, nodes, 2, surface);
     for (std::size_t t = 0; t < types.size(); ++t) {
       const int per = types[t] == kQuad ? 4 : types[t] == kTriangle ? 3 : 0;
-      if (per == 0) throw scene::RunError("gmsh produced 2D elements of unexpected type " + std::to_string(types[t]));
+      if (per == 0)
+        throw scene::RunError("gmsh produced 2D elements of unexpected type " +
+                              std::to_string(types[t]));
       for (std::size_t e = 0; e < elems[t].size(); ++e) {
         std::array<int, 4> c{-1, -1, -1, -1};
-        for (int k = 0; k < per; ++k) c[static_cast<std::size_t>(k)] = index.at(nodes[t][e * per + k]);
+        for (int k = 0; k < per; ++k)
+          c[static_cast<std::size_t>(k)] = index.at(nodes[t][e * per + k]);
         m.cells.push_back(c);
       }
       (per == 4 ? m.quads : m.triangles) += static_cast<long>(elems[t].size());
@@ -139,8 +142,8 @@ int add_strip(const ShockStrip& st, PointTable& points, std::vector<int>& surfac
   return loop;
 }
 
-PlaneMesh run(const FluidRegion& region, const SizeFunction& size, const std::vector<ShockStrip>& strips,
-              const GmshJob& job) {
+PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
+              const std::vector<ShockStrip>& strips, const GmshJob& job) {
   gmsh::clear();
   gmsh::model::add("meshgen");
   set_options(job);
@@ -177,7 +180,8 @@ PlaneMesh run(const FluidRegion& region, const SizeFunction& size, const std::ve
   gmsh::model::geo::synchronize();
   const std::size_t main_entities = 2 + curve_patch.size() + strip_curves;
   if (out.size() != main_entities + 2 * strip_surfaces.size() + strip_curves)
-    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) + " entities, expected " +
+    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) +
+                          " entities, expected " +
                           std::to_string(main_entities + 2 * strip_surfaces.size() + strip_curves));
   std::vector<int> plane{surface}, tops{out[0].second}, volumes{out[1].second};
   for (std::size_t k = 0, at = main_entities; k < strip_surfaces.size(); ++k) {
@@ -229,7 +233,10 @@ PlaneMesh guarded(const std::function<PlaneMesh()>& mesh) {
 }  // namespace
 
 PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
-  return guarded([&] { return run(region, [&size](Vec2 p) { return size(p); }, {}, job); });
+  return guarded([&] {
+    return run(
+        region, [&size](Vec2 p) { return size(p); }, {}, job);
+  });
 }
 
 PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeFunction& size,

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "band_strip.hpp"
 #include "foam_export.hpp"
 #include "gmsh_child.hpp"
 #include "gmsh_mesher.hpp"
@@ -99,7 +100,9 @@ struct Plan {
   std::shared_ptr<const scene::Lattice> size_lattice;  // adapted grids (body lengths)
   std::string size_field_path;                         // where it was read from
   std::optional<double> target;
+  double anisotropy = 1.0;  // mesh.anisotropy: > 1 lays shock-aligned strips in the band
 
+  bool strips() const { return anisotropy > 1.0 && !uniform && !size_lattice; }
   Sizing at(double scale, const FluidRegion& region) const {
     Sizing z;
     z.scale = scale;
@@ -206,6 +209,7 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
     throw scene::InputError(where + "h_min must be positive and not exceed h_max");
   plan.base.h_body = body_size(r, mp, plan.base, L);
   plan.base.growth = mp.growth;
+  plan.anisotropy = mp.anisotropy;
   plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
   if (mp.band_width) plan.band_width = *mp.band_width * L;
   plan.curve = r.shock_curve;
@@ -288,7 +292,21 @@ struct Meshed {
   double gmsh_cpu = 0.0;      // CPU time of every attempt
   double estimate = 0.0;      // cells estimated for the last attempt
   int attempts = 0;
+  BandLayout band;  // shock-aligned strips (mesh.anisotropy > 1)
 };
+
+// gmsh on the plan's field, or round shock-aligned strips when the plan asks
+// for them (band_strip.hpp).
+PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField& field, Meshed& m,
+                    const GmshJob& job, const fs::path& stage) {
+  const std::string scratch = (stage / "plane_mesh.bin").string();
+  if (!plan.strips()) return mesh_with_gmsh_in_child(region, field, job, scratch);
+  const SizeParams& p = m.sizing.params;
+  m.band = layout_strips(m.sizing.runs, region, {p.h_min, plan.anisotropy, p.h_max, p.growth});
+  const BandSize size(p, m.band, region.body.polyline);
+  const SizeFunction h = [&size](Vec2 q) { return size(q); };
+  return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
+}
 
 Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
                       const fs::path& stage, const std::string& where, const std::string& out_dir) {
@@ -310,7 +328,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
     stop_if_interrupted("before meshing", out_dir);
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu_before = scene::children_cpu_seconds();
-    m.mesh = mesh_with_gmsh_in_child(region, field, job, (stage / "plane_mesh.bin").string());
+    m.mesh = mesh_plan(plan, region, field, m, job, stage);
     m.gmsh_seconds = seconds_since(t0);
     // The child's CPU time: what gmsh itself cost, whatever the load; every
     // attempt at a target cell count costs.
@@ -336,6 +354,7 @@ struct CellSizes {
   double min = std::numeric_limits<double>::infinity(), max = 0.0;
   double band_max = 0.0;
   long band_cells = 0;
+  BandShape band_shape;
 };
 
 CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double growth) {
@@ -345,6 +364,7 @@ CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double
   SizeParams band_params = sizing.params;
   band_params.h_max = std::max(band_params.h_max, band_params.h_min * growth);
   const SizeField band_field(band_params, sizing.runs, {});
+  BandShapeMeter shape(sizing.runs);
   for (const auto& c : mesh.cells) {
     const double h = cell_size(mesh, c);
     out.min = std::min(out.min, h);
@@ -352,8 +372,13 @@ CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double
     if (!sizing.runs.empty() && band_field.in_band(centroid(mesh, c))) {
       ++out.band_cells;
       out.band_max = std::max(out.band_max, h);
+      std::vector<Vec2> corners;
+      for (const int k : c)
+        if (k >= 0) corners.push_back(mesh.nodes[static_cast<std::size_t>(k)]);
+      shape.add(corners);
     }
   }
+  out.band_shape = shape.result();
   return out;
 }
 
@@ -438,6 +463,17 @@ nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const Fluid
   j["band_cells"] = sizes.band_cells;
   j["band_max_cell_size"] =
       sizes.band_cells ? nlohmann::json(sizes.band_max) : nlohmann::json(nullptr);
+  const auto band_figure = [&](double v) {
+    return sizes.band_cells ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  j["anisotropy"] = plan.anisotropy;
+  j["band_max_aspect_ratio"] = band_figure(sizes.band_shape.max_aspect);
+  j["band_mean_aspect_ratio"] = band_figure(sizes.band_shape.mean_aspect);
+  j["band_max_thickness"] = band_figure(sizes.band_shape.max_thickness);
+  long strip_cells = 0;
+  for (const ShockStrip& st : m.band.strips) strip_cells += static_cast<long>(st.cells());
+  j["band_strips"] = m.band.strips.size();
+  j["band_strip_cells"] = strip_cells;
   j["target_cells"] = plan.target ? nlohmann::json(*plan.target) : nlohmann::json(nullptr);
   j["estimated_cells"] = m.estimate;
   j["mesh_attempts"] = m.attempts;

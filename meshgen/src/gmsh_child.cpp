@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -75,14 +76,13 @@ PlaneMesh read_mesh(const std::string& path) {
   return m;
 }
 
-[[noreturn]] void child(const FluidRegion& region, const SizeField& size, const GmshJob& job,
-                        const std::string& scratch) {
+[[noreturn]] void child(const std::function<PlaneMesh()>& mesh, const std::string& scratch) {
   // The parent decides about Ctrl-C (it kills this process); a terminal's
   // SIGINT reaches the whole process group, so ignore it here.
   std::signal(SIGINT, SIG_IGN);
   int code = 0;
   try {
-    write_mesh(mesh_with_gmsh(region, size, job), scratch);
+    write_mesh(mesh(), scratch);
   } catch (const scene::InputError& e) {
     std::ofstream(scratch) << e.what();
     code = kChildInputError;
@@ -104,15 +104,12 @@ std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-}  // namespace
-
-PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeField& size,
-                                  const GmshJob& job, const std::string& scratch_file) {
+PlaneMesh mesh_in_child(const std::function<PlaneMesh()>& mesh, const std::string& scratch_file) {
   std::fflush(nullptr);  // or buffered output would be written twice
   const pid_t pid = ::fork();
   if (pid < 0)
     throw scene::RunError(std::string("cannot start the meshing process: ") + std::strerror(errno));
-  if (pid == 0) child(region, size, job, scratch_file);
+  if (pid == 0) child(mesh, scratch_file);
 
   struct Scratch {  // removed however this function ends
     std::string path;
@@ -145,6 +142,19 @@ PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeField& si
                                       : msg);
   }
   return read_mesh(scratch_file);
+}
+
+}  // namespace
+
+PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeField& size,
+                                  const GmshJob& job, const std::string& scratch_file) {
+  return mesh_in_child([&] { return mesh_with_gmsh(region, size, job); }, scratch_file);
+}
+
+PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeFunction& size,
+                                  const std::vector<ShockStrip>& strips, const GmshJob& job,
+                                  const std::string& scratch_file) {
+  return mesh_in_child([&] { return mesh_with_gmsh(region, size, strips, job); }, scratch_file);
 }
 
 }  // namespace meshgen

@@ -16,5 +16,8 @@ namespace meshgen {
 // RunError messages are passed on as the same kind.
 PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeField& size,
                                   const GmshJob& job, const std::string& scratch_file);
+PlaneMesh mesh_with_gmsh_in_child(const FluidRegion& region, const SizeFunction& size,
+                                  const std::vector<ShockStrip>& strips, const GmshJob& job,
+                                  const std::string& scratch_file);
 
 }  // namespace meshgen

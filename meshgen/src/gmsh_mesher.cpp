@@ -2,6 +2,7 @@
 
 #include <gmsh.h>
 
+#include <functional>
 #include <map>
 #include <mutex>
 #include <unordered_map>
@@ -81,35 +82,68 @@ class PointTable {
   std::vector<std::pair<Vec2, int>> pts_;
 };
 
-PlaneMesh read_plane(int surface, int volume) {
+PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<int>& volumes) {
   PlaneMesh m;
+  std::unordered_map<std::size_t, int> index;
   std::vector<std::size_t> tags;
   std::vector<double> coord, param;
-  gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, true, false);
-  std::unordered_map<std::size_t, int> index;
-  for (std::size_t i = 0; i < tags.size(); ++i) {
-    index[tags[i]] = static_cast<int>(i);
-    m.nodes.push_back({coord[3 * i], coord[3 * i + 1]});
+  for (const int surface : surfaces) {
+    gmsh::model::mesh::getNodes(tags, coord, param, 2, surface, true, false);
+    for (std::size_t i = 0; i < tags.size(); ++i)
+      if (index.emplace(tags[i], static_cast<int>(m.nodes.size())).second)
+        m.nodes.push_back({coord[3 * i], coord[3 * i + 1]});
   }
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> elems, nodes;
-  gmsh::model::mesh::getElements(types, elems, nodes, 2, surface);
-  for (std::size_t t = 0; t < types.size(); ++t) {
-    const int per = types[t] == kQuad ? 4 : types[t] == kTriangle ? 3 : 0;
-    if (per == 0) throw scene::RunError("gmsh produced 2D elements of unexpected type " + std::to_string(types[t]));
-    for (std::size_t e = 0; e < elems[t].size(); ++e) {
-      std::array<int, 4> c{-1, -1, -1, -1};
-      for (int k = 0; k < per; ++k) c[static_cast<std::size_t>(k)] = index.at(nodes[t][e * per + k]);
-      m.cells.push_back(c);
+  for (const int surface : surfaces) {
+    gmsh::model::mesh::getElements(types, elems, nodes, 2, surface);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      const int per = types[t] == kQuad ? 4 : types[t] == kTriangle ? 3 : 0;
+      if (per == 0)
+        throw scene::RunError("gmsh produced 2D elements of unexpected type " +
+                              std::to_string(types[t]));
+      for (std::size_t e = 0; e < elems[t].size(); ++e) {
+        std::array<int, 4> c{-1, -1, -1, -1};
+        for (int k = 0; k < per; ++k)
+          c[static_cast<std::size_t>(k)] = index.at(nodes[t][e * per + k]);
+        m.cells.push_back(c);
+      }
+      (per == 4 ? m.quads : m.triangles) += static_cast<long>(elems[t].size());
     }
-    (per == 4 ? m.quads : m.triangles) += static_cast<long>(elems[t].size());
   }
-  gmsh::model::mesh::getElements(types, elems, nodes, 3, volume);
-  for (const auto& e : elems) m.volume_cells += static_cast<long>(e.size());
+  for (const int volume : volumes) {
+    gmsh::model::mesh::getElements(types, elems, nodes, 3, volume);
+    for (const auto& e : elems) m.volume_cells += static_cast<long>(e.size());
+  }
   return m;
 }
 
-PlaneMesh run(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
+// A strip as a transfinite surface: every outline segment its own line
+// (two nodes), the four corners named, so gmsh's transfinite interpolation
+// puts node (i, j) on the straight column between the sides' nodes. Returns
+// its curve loop; the surface is added to `surfaces`.
+int add_strip(const ShockStrip& st, PointTable& points, std::vector<int>& surfaces) {
+  const std::vector<Vec2> outline = st.outline();
+  const std::size_t n = st.stations(), m = st.rows.size();
+  std::vector<int> pts;
+  for (const Vec2 p : outline) pts.push_back(points.get(p));
+  std::vector<int> curves;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const int c = gmsh::model::geo::addLine(pts[k], pts[(k + 1) % pts.size()]);
+    gmsh::model::geo::mesh::setTransfiniteCurve(c, 2);
+    curves.push_back(c);
+  }
+  const int loop = gmsh::model::geo::addCurveLoop(curves);
+  const int surface = gmsh::model::geo::addPlaneSurface({loop});
+  const std::vector<int> corners{pts[0], pts[n - 1], pts[n - 1 + m - 1], pts[2 * (n - 1) + m - 1]};
+  gmsh::model::geo::mesh::setTransfiniteSurface(surface, "Left", corners);
+  gmsh::model::geo::mesh::setRecombine(2, surface);
+  surfaces.push_back(surface);
+  return loop;
+}
+
+PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
+              const std::vector<ShockStrip>& strips, const GmshJob& job) {
   gmsh::clear();
   gmsh::model::add("meshgen");
   set_options(job);
@@ -130,41 +164,59 @@ PlaneMesh run(const FluidRegion& region, const SizeField& size, const GmshJob& j
     }
     loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
   }
+  // Strips are holes of the main surface and surfaces of their own; their
+  // lateral faces after extrusion are internal (no patch).
+  std::vector<int> strip_surfaces;
+  std::size_t strip_curves = 0;
+  for (const ShockStrip& st : strips) {
+    loop_tags.push_back(add_strip(st, points, strip_surfaces));
+    strip_curves += st.outline().size();
+  }
   const int surface = gmsh::model::geo::addPlaneSurface(loop_tags);
+  std::vector<std::pair<int, int>> bottoms{{2, surface}};
+  for (const int s : strip_surfaces) bottoms.emplace_back(2, s);
   gmsh::vectorpair out;
-  gmsh::model::geo::extrude({{2, surface}}, 0.0, 0.0, job.thickness, out, {1}, {}, true);
+  gmsh::model::geo::extrude(bottoms, 0.0, 0.0, job.thickness, out, {1}, {}, true);
   gmsh::model::geo::synchronize();
-  if (out.size() != 2 + curve_patch.size())
-    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) + " entities, expected " +
-                          std::to_string(2 + curve_patch.size()));
-  const int top_surface = out[0].second, volume = out[1].second;
+  const std::size_t main_entities = 2 + curve_patch.size() + strip_curves;
+  if (out.size() != main_entities + 2 * strip_surfaces.size() + strip_curves)
+    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) +
+                          " entities, expected " +
+                          std::to_string(main_entities + 2 * strip_surfaces.size() + strip_curves));
+  std::vector<int> plane{surface}, tops{out[0].second}, volumes{out[1].second};
+  for (std::size_t k = 0, at = main_entities; k < strip_surfaces.size(); ++k) {
+    plane.push_back(strip_surfaces[k]);
+    tops.push_back(out[at].second);
+    volumes.push_back(out[at + 1].second);
+    at += 2 + strips[k].outline().size();
+  }
   std::map<Patch, std::vector<int>> by_patch;
   for (std::size_t i = 0; i < curve_patch.size(); ++i) by_patch[curve_patch[i]].push_back(out[2 + i].second);
   for (const auto& [patch, tags] : by_patch) {
     const int g = gmsh::model::addPhysicalGroup(2, tags);
     gmsh::model::setPhysicalName(2, g, patch_name(patch));
   }
-  const int fb = gmsh::model::addPhysicalGroup(2, {surface, top_surface});
+  std::vector<int> front_back = plane;
+  front_back.insert(front_back.end(), tops.begin(), tops.end());
+  const int fb = gmsh::model::addPhysicalGroup(2, front_back);
   gmsh::model::setPhysicalName(2, fb, "frontAndBack");
-  const int fluid = gmsh::model::addPhysicalGroup(3, {volume});
+  const int fluid = gmsh::model::addPhysicalGroup(3, volumes);
   gmsh::model::setPhysicalName(3, fluid, "fluid");
 
   gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double) { return size({x, y}); });
   gmsh::model::mesh::generate(3);
   gmsh::model::mesh::removeSizeCallback();
-  PlaneMesh m = read_plane(surface, volume);
+  PlaneMesh m = read_plane(plane, volumes);
   gmsh::write(job.msh_path);
   gmsh::clear();
   return m;
 }
 
-}  // namespace
-
-PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
+PlaneMesh guarded(const std::function<PlaneMesh()>& mesh) {
   const std::lock_guard<std::mutex> lock(gmsh_mutex());
   ensure_initialized();
   try {
-    return run(region, size, job);
+    return mesh();
   } catch (const scene::RunError&) {
     gmsh::model::mesh::removeSizeCallback();  // it refers to `size`, which is going away
     gmsh::clear();
@@ -176,6 +228,20 @@ PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const
     gmsh::clear();
     throw scene::RunError("gmsh failed: " + (last.empty() ? std::string("unknown error") : last));
   }
+}
+
+}  // namespace
+
+PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job) {
+  return guarded([&] {
+    return run(
+        region, [&size](Vec2 p) { return size(p); }, {}, job);
+  });
+}
+
+PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeFunction& size,
+                         const std::vector<ShockStrip>& strips, const GmshJob& job) {
+  return guarded([&] { return run(region, size, strips, job); });
 }
 
 }  // namespace meshgen

@@ -1,10 +1,12 @@
 #pragma once
 // The gmsh part of meshgen (private: gmsh types stay in gmsh_mesher.cpp).
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "meshgen/fluid_region.hpp"
+#include "band_strip.hpp"
 #include "meshgen/size_field.hpp"
 
 namespace meshgen {
@@ -31,5 +33,11 @@ struct GmshJob {
 // bottom, body, frontAndBack; volume "fluid") and writes the .msh file.
 // RunError when gmsh fails.
 PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job);
+
+// The same with shock-aligned strips (band_strip.hpp): each strip a
+// transfinite surface of quads, the rest meshed round them with `size`.
+using SizeFunction = std::function<double(scene::Vec2)>;
+PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeFunction& size,
+                         const std::vector<ShockStrip>& strips, const GmshJob& job);
 
 }  // namespace meshgen

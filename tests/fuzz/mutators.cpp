@@ -51,7 +51,8 @@ const std::vector<std::string> kKeys = {"mach",
                                         "min_samples",
                                         "noise_factor",
                                         "h_body",
-                                        "h_uniform"};
+                                        "h_uniform",
+                                        "anisotropy"};
 const std::vector<std::string> kSections = {"body",     "freestream", "granular", "mesh", "cfd",
                                             "shockfit", "pipeline",   "domain",   "box"};
 

@@ -16,6 +16,7 @@ struct MeshParams {
   std::optional<double> h_uniform;   // cell size of the uniform grid; default h_min
   std::string algorithm = "delaunay";  // gmsh 2D algorithm: delaunay (fast) | frontal (better cells)
   int smoothing = 1;                 // gmsh Laplacian smoothing passes (~2 s CPU per 100k cells each)
+  double anisotropy = 1.0;           // max along/across aspect of band cells; 1 = isotropic band
 };
 
 }  // namespace scene

@@ -1,0 +1,352 @@
+#include "band_strip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace meshgen {
+
+using scene::Vec2;
+
+namespace {
+
+// A cell may turn the shock by at most kCurvatureCells radians (~6 deg):
+// neighbouring columns then meet at that angle at most, which is what the
+// strip adds to the grid's non-orthogonality.
+constexpr double kCurvatureCells = 0.1;
+// Where the prediction's ci (the band's half-width) changes along the shock,
+// a cell's length keeps that change under kWidthChangeCells h_min, so the
+// columns' rows do not shear from one column to the next.
+constexpr double kWidthChangeCells = 1.0;
+// Neighbouring along-shock lengths differ by at most this factor.
+constexpr double kAlongGrowth = 1.2;
+// Rows beyond the band grow by kGrowthRows until one reaches l / kEdgeJump:
+// the isotropic grid outside (cells of size l at the outline) then meets a
+// row at most kEdgeJump times thinner.
+constexpr double kGrowthRows = 2.0;
+constexpr double kEdgeJump = 2.5;
+// A strip keeps this many h_min clear of the region's boundary and of other strips.
+constexpr double kStripMargin = 1.0;
+// Columns may not fold: the strip's half-width stays below this fraction of
+// the radius of curvature.
+constexpr double kMaxWidthCurvature = 0.5;
+// Fewer stations than this and the run stays isotropic.
+constexpr std::size_t kMinStations = 3;
+// Points checked along each column when trimming.
+constexpr int kColumnChecks = 8;
+// Boundary sampling: arcs to this sag, in h_min.
+constexpr double kBoundarySag = 0.05;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Arc-length parametrised polyline.
+struct Polyline {
+  std::vector<Vec2> p;
+  std::vector<double> s;  // cumulative length
+  std::vector<double> w;  // band half-width per vertex
+  explicit Polyline(const ShockRun& r) : p(r.points), w(r.half_width) {
+    s.assign(p.size(), 0.0);
+    for (std::size_t i = 1; i < p.size(); ++i) s[i] = s[i - 1] + scene::norm(p[i] - p[i - 1]);
+  }
+  double length() const { return s.back(); }
+  std::size_t segment(double t) const {
+    const auto it = std::upper_bound(s.begin(), s.end(), t);
+    const std::size_t k = it == s.begin() ? 0 : static_cast<std::size_t>(it - s.begin()) - 1;
+    return std::min(k, p.size() - 2);
+  }
+  Vec2 at(double t) const {
+    t = std::clamp(t, 0.0, length());
+    const std::size_t k = segment(t);
+    const double len = s[k + 1] - s[k];
+    const double f = len > 0 ? (t - s[k]) / len : 0.0;
+    return p[k] + f * (p[k + 1] - p[k]);
+  }
+  double width(double t) const {
+    t = std::clamp(t, 0.0, length());
+    const std::size_t k = segment(t);
+    const double len = s[k + 1] - s[k];
+    const double f = len > 0 ? (t - s[k]) / len : 0.0;
+    return w[k] + f * (w[k + 1] - w[k]);
+  }
+  // Unit tangent from the chord over [t - half, t + half] (clamped to the ends).
+  Vec2 tangent(double t, double half) const {
+    const Vec2 a = at(t - half), b = at(t + half);
+    return scene::normalized(b - a);
+  }
+  // Curvature: the turn between the chord tangents at t - half and t + half
+  // (each `half` long), over the distance between the chords' centres.
+  double curvature(double t, double half) const {
+    const auto chord = [&](double c) {
+      // Chords stay whole: their centres are kept half a chord inside the run.
+      const double q = std::min(0.5 * half, 0.5 * length());
+      c = std::clamp(c, q, length() - q);
+      return std::pair{scene::normalized(at(c + q) - at(c - q)), c};
+    };
+    const auto [ta, ca] = chord(t - half);
+    const auto [tb, cb] = chord(t + half);
+    if (cb - ca <= 0) return 0.0;
+    return std::atan2(std::abs(scene::cross(ta, tb)), scene::dot(ta, tb)) / (cb - ca);
+  }
+  // |dw/ds| over [t - half, t + half], clamped to the run.
+  double width_slope(double t, double half) const {
+    const double lo = std::max(t - half, 0.0), hi = std::min(t + half, length());
+    return hi > lo ? std::abs(width(hi) - width(lo)) / (hi - lo) : 0.0;
+  }
+  // The piece [a, b] as a run.
+  ShockRun piece(double a, double b) const {
+    ShockRun r;
+    r.points.push_back(at(a));
+    r.half_width.push_back(width(a));
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (s[i] > a && s[i] < b) {
+        r.points.push_back(p[i]);
+        r.half_width.push_back(w[i]);
+      }
+    r.points.push_back(at(b));
+    r.half_width.push_back(width(b));
+    return r;
+  }
+};
+
+// Row offsets at scale 1: the band in equal rows of at most h_min, then
+// growth rows out to l / kEdgeJump, mirrored.
+std::vector<double> make_rows(double w_max, double h_min, double l_max) {
+  const int n = std::max(1, static_cast<int>(std::ceil(w_max / h_min - 1e-9)));
+  std::vector<double> half{0.0};
+  for (int k = 1; k <= n; ++k) half.push_back(w_max * k / n);
+  double t = w_max / n;
+  while (t * kEdgeJump < l_max) {
+    t *= kGrowthRows;
+    half.push_back(half.back() + t);
+  }
+  std::vector<double> rows;
+  for (auto it = half.rbegin(); it != half.rend(); ++it) rows.push_back(-*it);
+  for (std::size_t k = 1; k < half.size(); ++k) rows.push_back(half[k]);
+  return rows;
+}
+
+// Distance from p to the region's boundary (up to a cut-off).
+class BoundaryDistance {
+ public:
+  BoundaryDistance(const FluidRegion& region, double sag, double cutoff) {
+    for (const auto& loop : region.loops) {
+      std::vector<Vec2> pts;
+      for (const BoundaryCurve& c : loop) {
+        const std::vector<Vec2> s = sample_curve(c, sag);
+        pts.insert(pts.end(), s.begin(), s.end());
+      }
+      if (!pts.empty()) pts.push_back(pts.front());
+      index_.add_polyline(pts, {});
+    }
+    index_.build(cutoff);
+  }
+  double operator()(Vec2 p) const { return index_.excess(p); }
+
+ private:
+  SegmentIndex index_;
+};
+
+// Stations along one run: positions in arc length.
+std::vector<double> station_positions(const Polyline& line, const StripRule& rule) {
+  const double l_max = rule.max_aspect * rule.h_min;
+  const double window = l_max;
+  std::vector<double> s{0.0};
+  double prev = l_max;
+  while (s.back() < line.length()) {
+    const double k = line.curvature(s.back(), window);
+    const double dw = line.width_slope(s.back(), window);
+    double l = k > 0 ? std::min(l_max, kCurvatureCells / k) : l_max;
+    if (dw > 0) l = std::min(l, kWidthChangeCells * rule.h_min / dw);
+    l = std::clamp(std::min(l, prev * kAlongGrowth), rule.h_min, l_max);
+    s.push_back(s.back() + l);
+    prev = l;
+  }
+  // Stretch to end exactly on the run's end (the last step shrinks or the
+  // whole sequence scales by less than one step's worth).
+  if (s.size() < 2) return s;
+  const double f = line.length() / s.back();
+  for (double& v : s) v *= f;
+  return s;
+}
+
+bool column_fits(const ShockStrip& strip, std::size_t i, const FluidRegion& region,
+                 const BoundaryDistance& dist, const std::vector<std::vector<Vec2>>& others,
+                 double margin) {
+  const Vec2 a = strip.node(i, 0), b = strip.node(i, strip.rows.size() - 1);
+  for (int k = 0; k <= kColumnChecks; ++k) {
+    const Vec2 p = a + (static_cast<double>(k) / kColumnChecks) * (b - a);
+    if (!region.contains(p) || dist(p) < margin) return false;
+    for (const auto& poly : others)
+      if (inside_polygon(poly, p)) return false;
+  }
+  return true;
+}
+
+// The longest run of consecutive fitting stations: [first, last].
+std::pair<std::size_t, std::size_t> longest_fit(const std::vector<bool>& ok) {
+  std::size_t best_a = 0, best_n = 0;
+  for (std::size_t i = 0; i < ok.size();) {
+    if (!ok[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < ok.size() && ok[j]) ++j;
+    if (j - i > best_n) {
+      best_n = j - i;
+      best_a = i;
+    }
+    i = j;
+  }
+  return {best_a, best_a + best_n};  // half-open
+}
+
+}  // namespace
+
+std::vector<Vec2> ShockStrip::outline() const {
+  std::vector<Vec2> out;
+  const std::size_t n = stations(), m = rows.size();
+  for (std::size_t i = 0; i < n; ++i) out.push_back(node(i, 0));
+  for (std::size_t j = 1; j < m; ++j) out.push_back(node(n - 1, j));
+  for (std::size_t i = n - 1; i-- > 0;) out.push_back(node(i, m - 1));
+  for (std::size_t j = m - 1; j-- > 1;) out.push_back(node(0, j));
+  return out;
+}
+
+BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& region,
+                         const StripRule& rule) {
+  BandLayout out;
+  const double margin = kStripMargin * rule.h_min;
+  const double l_max = rule.max_aspect * rule.h_min;
+  std::vector<std::vector<Vec2>> placed;
+  for (const ShockRun& run : runs) {
+    if (run.points.size() < 2) {
+      out.uncovered.push_back(run);
+      continue;
+    }
+    const Polyline line(run);
+    const double w_max = *std::max_element(run.half_width.begin(), run.half_width.end());
+    ShockStrip strip;
+    const std::vector<double> s = station_positions(line, rule);
+    // Growth rows end at the longest cell this strip has, not at a h_min.
+    double l_run = rule.h_min;
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
+    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_run);
+    const double half_width = strip.rows.back();
+    const BoundaryDistance dist(region, kBoundarySag * rule.h_min, half_width + 2 * margin);
+    for (const double t : s) {
+      strip.centre.push_back(line.at(t));
+      strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));
+      strip.scale.push_back(
+          w_max > 0 ? std::max(line.width(t), rule.h_min) / std::max(w_max, rule.h_min) : 1.0);
+    }
+    std::vector<bool> ok(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i)
+      ok[i] = line.curvature(s[i], l_max) * half_width <= kMaxWidthCurvature &&
+              column_fits(strip, i, region, dist, placed, margin);
+    const auto [a, b] = longest_fit(ok);
+    if (b - a < kMinStations) {
+      out.uncovered.push_back(run);
+      continue;
+    }
+    ShockStrip kept;
+    kept.rows = strip.rows;
+    for (std::size_t i = a; i < b; ++i) {
+      kept.centre.push_back(strip.centre[i]);
+      kept.normal.push_back(strip.normal[i]);
+      kept.scale.push_back(strip.scale[i]);
+      if (i + 1 < b) kept.along.push_back(s[i + 1] - s[i]);
+    }
+    if (a > 0) out.uncovered.push_back(line.piece(0.0, s[a]));
+    if (b < s.size()) out.uncovered.push_back(line.piece(s[b - 1], line.length()));
+    placed.push_back(kept.outline());
+    out.strips.push_back(std::move(kept));
+  }
+  return out;
+}
+
+BandSize::BandSize(const SizeParams& p, const BandLayout& layout,
+                   const std::vector<Vec2>& body_polyline)
+    : base_(p, layout.uncovered, body_polyline), slope_(p.growth - 1.0), h_max_(p.h_max) {
+  // SegmentIndex gives min(d - v); with v = -l_edge / slope that is
+  // (min(l_edge + slope d)) / slope.
+  for (const ShockStrip& st : layout.strips) {
+    std::vector<Vec2> loop = st.outline();
+    const std::size_t n = st.stations(), m = st.rows.size();
+    std::vector<double> v;
+    const auto side = [&](std::size_t i) {
+      const double lo = i > 0 ? st.along[i - 1] : st.along[0];
+      const double hi = i + 1 < n ? st.along[i] : st.along[n - 2];
+      return 0.5 * (lo + hi);
+    };
+    const auto row = [&](std::size_t i, std::size_t j) {
+      const std::size_t k = j == 0 ? 0 : j - 1;
+      return st.scale[i] * (st.rows[k + 1] - st.rows[k]);
+    };
+    for (std::size_t i = 0; i < n; ++i) v.push_back(side(i));
+    for (std::size_t j = 1; j < m; ++j) v.push_back(j + 1 == m ? side(n - 1) : row(n - 1, j));
+    for (std::size_t i = n - 1; i-- > 0;) v.push_back(side(i));
+    for (std::size_t j = m - 1; j-- > 1;) v.push_back(row(0, j));
+    loop.push_back(loop.front());
+    v.push_back(v.front());
+    for (double& x : v) x = -x / slope_;
+    edges_.add_polyline(loop, v);
+  }
+  edges_.build(p.h_max / slope_);
+}
+
+double BandSize::operator()(Vec2 p) const {
+  const double h = base_(p);
+  const double e = edges_.excess(p);
+  return std::isfinite(e) ? std::min({h, slope_ * e, h_max_}) : h;
+}
+
+BandShapeMeter::BandShapeMeter(const std::vector<ShockRun>& runs) {
+  for (const ShockRun& r : runs)
+    for (std::size_t i = 0; i + 1 < r.points.size(); ++i)
+      segs_.emplace_back(r.points[i], r.points[i + 1]);
+}
+
+Vec2 BandShapeMeter::normal_near(Vec2 p) const {
+  double best = kInf;
+  Vec2 n{0.0, 1.0};
+  for (const auto& [a, b] : segs_) {
+    const Vec2 ab = b - a;
+    const double len2 = scene::norm2(ab);
+    if (len2 <= 0) continue;
+    const double t = std::clamp(scene::dot(p - a, ab) / len2, 0.0, 1.0);
+    const double d = scene::norm2(p - (a + t * ab));
+    if (d < best) {
+      best = d;
+      n = scene::perp(ab / std::sqrt(len2));
+    }
+  }
+  return n;
+}
+
+void BandShapeMeter::add(const std::vector<Vec2>& corners) {
+  Vec2 c;
+  for (const Vec2 q : corners) c += q;
+  c = c / static_cast<double>(corners.size());
+  const Vec2 n = normal_near(c), t = scene::perp(n);
+  double n_lo = kInf, n_hi = -kInf, t_lo = kInf, t_hi = -kInf;
+  for (const Vec2 q : corners) {
+    n_lo = std::min(n_lo, scene::dot(q, n));
+    n_hi = std::max(n_hi, scene::dot(q, n));
+    t_lo = std::min(t_lo, scene::dot(q, t));
+    t_hi = std::max(t_hi, scene::dot(q, t));
+  }
+  const double across = n_hi - n_lo, along = t_hi - t_lo;
+  const double aspect = std::max(across, along) / std::max(std::min(across, along), 1e-300);
+  ++s_.cells;
+  sum_ += aspect;
+  s_.max_aspect = std::max(s_.max_aspect, aspect);
+  s_.max_thickness = std::max(s_.max_thickness, across);
+}
+
+BandShape BandShapeMeter::result() const {
+  BandShape r = s_;
+  r.mean_aspect = s_.cells ? sum_ / static_cast<double>(s_.cells) : 0.0;
+  return r;
+}
+
+}  // namespace meshgen

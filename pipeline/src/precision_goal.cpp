@@ -22,11 +22,13 @@ std::optional<double> precision_target(const scene::Scene& s) {
 double shock_position_half_width(const scene::Scene& s, const shockfit::ShockResult& r) {
   using scene::ShockKind;
   if (r.shock == ShockKind::detached) return r.standoff_ci;
-  if (r.shock != ShockKind::attached || !s.body || !std::isfinite(r.shock_angle_ci_deg)) return scene::kNaN;
+  if (r.shock != ShockKind::attached || !s.body || !std::isfinite(r.shock_angle_ci_deg))
+    return scene::kNaN;
   const scene::BodyGeometry g = scene::make_body(*s.body);
   double reach = 0.0;
   for (const auto& st : r.stations)
-    if (st.accepted && std::isfinite(st.shock.x)) reach = std::max(reach, scene::norm(st.shock - g.nose));
+    if (st.accepted && std::isfinite(st.shock.x))
+      reach = std::max(reach, scene::norm(st.shock - g.nose));
   return reach / g.length * std::tan(r.shock_angle_ci_deg * scene::kDeg);
 }
 
@@ -36,7 +38,8 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
   if (!target) return goal;
   goal.target = *target;
   char mesh_source[80];
-  std::snprintf(mesh_source, sizeof mesh_source, "mesh: %g h_min of the finest clustered grid", kTargetFineCells);
+  std::snprintf(mesh_source, sizeof mesh_source, "mesh: %g h_min of the finest clustered grid",
+                kTargetFineCells);
   goal.target_source = s.granular.target_from_mesh ? mesh_source : "granular.target_half_width";
   goal.measure = [s](const scene::Lattice& fields) {
     granular::PrecisionMeasure m;
@@ -45,7 +48,9 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
     m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
                  : r.shock == scene::ShockKind::detached ? "standoff"
                                                          : "none";
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    auto num = [](double v) {
+      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
     m.details = {{"shock", scene::to_string(r.shock)},
                  {"shock_angle_deg", num(r.shock_angle_deg)},
                  {"shock_angle_ci_deg", num(r.shock_angle_ci_deg)},

@@ -181,8 +181,9 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
   StageCache cache(out_dir);
   // A target taken from the mesh moves with the mesh and the levels.
   const granular::PrecisionGoal goal = precision_goal(s);
-  std::vector<std::string> parts{scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
-                                 scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")};
+  std::vector<std::string> parts{
+      scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
+      scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")};
   if (goal.active()) parts.push_back(nlohmann::json(goal.target).dump());
   const std::string fp_g = fingerprint(parts);
   nlohmann::json gsum;
@@ -216,8 +217,9 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     shockfit::write_outputs(s, fields, r, cache.dir("shockfit"));
     ssum = r.summary();
     const double position_half_width = shock_position_half_width(s, r);
-    ssum["shock_position_half_width"] =
-        std::isfinite(position_half_width) ? nlohmann::json(position_half_width) : nlohmann::json(nullptr);
+    ssum["shock_position_half_width"] = std::isfinite(position_half_width)
+                                            ? nlohmann::json(position_half_width)
+                                            : nlohmann::json(nullptr);
     ssum["stage_cpu_seconds"] = cpu.seconds();
     cache.mark_done("shockfit", fp_s, ssum);
   }

@@ -1,9 +1,9 @@
-#include "params_parse.hpp"
-
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <string>
+
+#include "params_parse.hpp"
 
 namespace scene {
 
@@ -34,8 +34,8 @@ void parse_precision_target(Section& s, GranularParams& p) {
   const double v = std::strtod(text->c_str(), &end);
   const Range r{0.0, kMaxTargetHalfWidth, true, false};
   if (text->empty() || end != text->c_str() + text->size() || !r.contains(v))
-    s.fail("target_half_width",
-           "expected a half-width in body lengths (" + r.describe() + ") or 'mesh', got '" + *text + "'");
+    s.fail("target_half_width", "expected a half-width in body lengths (" + r.describe() +
+                                    ") or 'mesh', got '" + *text + "'");
   p.target_half_width = v;
 }
 
@@ -69,7 +69,8 @@ GranularParams parse_granular(Section& s) {
   p.averaging = s.number("averaging", p.averaging, {0.0, kMaxFlowThroughs, true, false});
   parse_precision_target(s, p);
   p.cpu_budget = s.opt_number("cpu_budget", positive());
-  p.max_averaging = s.number("max_averaging", p.max_averaging, {0.0, kMaxFlowThroughs, true, false});
+  p.max_averaging =
+      s.number("max_averaging", p.max_averaging, {0.0, kMaxFlowThroughs, true, false});
   p.replicas = static_cast<int>(s.integer("replicas", p.replicas, 1, 10000));
   p.snapshots = s.boolean("snapshots", p.snapshots);
   return p;

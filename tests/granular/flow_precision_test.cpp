@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "granular/flow_run.hpp"
@@ -63,7 +62,8 @@ TEST(FlowPrecision, StopsWhenTheMeasureMeetsTheTarget) {
   EXPECT_EQ(j["stopped_by"], "precision");
   EXPECT_EQ(*calls, 3);
   EXPECT_NEAR(j["averaging_flow_throughs"].get<double>(),
-              granular::kFirstCheckFlowThroughs + 2 * granular::kCheckEveryFlowThroughs, kFlowThroughTol);
+              granular::kFirstCheckFlowThroughs + 2 * granular::kCheckEveryFlowThroughs,
+              kFlowThroughTol);
   EXPECT_NEAR(j["precision"]["half_width"].get<double>(), 1.0 / 3.0, 1e-15);
   EXPECT_EQ(j["precision"]["target_half_width"], 0.4);
   ASSERT_EQ(j["precision"]["checks"].size(), 3u);
@@ -93,7 +93,8 @@ TEST(FlowPrecision, ChunksReproduceOneUninterruptedRun) {
   auto calls = std::make_shared<int>(0);
   granular::RunOptions o;
   o.np = 2;
-  const granular::FlowResult chunked = granular::run_flow_scene(s, o, {}, counting_goal(1e-9, calls));
+  const granular::FlowResult chunked =
+      granular::run_flow_scene(s, o, {}, counting_goal(1e-9, calls));
   EXPECT_EQ(chunked.summary["stopped_by"], "averaging");
   EXPECT_EQ(*calls, 2);
   const granular::FlowResult again = granular::run_flow_scene(s, o, {}, counting_goal(1e-9, calls));
@@ -117,7 +118,8 @@ TEST(FlowPrecision, SingleReplicaChunksKeepBatchesForTheSpread) {
   const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, counting_goal(1e-9, calls));
   EXPECT_EQ(r.summary["stopped_by"], "averaging");
   int finite = 0;
-  for (const double x : r.fields.field("volume_fraction_se")) finite += std::isfinite(x) && x > 0.0 ? 1 : 0;
+  for (const double x : r.fields.field("volume_fraction_se"))
+    finite += std::isfinite(x) && x > 0.0 ? 1 : 0;
   EXPECT_GT(finite, 0);
 }
 

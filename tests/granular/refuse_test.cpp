@@ -129,8 +129,9 @@ TEST(Refuse, PrecisionKeysOutOfRangeAreRefusedNamingTheKey) {
   // lengths or `mesh`, a positive CPU budget, a positive averaging cap.
   const std::string dir = fresh("precision");
   const std::string head = "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\ngranular: ";
-  for (const char* bad : {"{target_half_width: 0}", "{target_half_width: -0.01}", "{target_half_width: 2}",
-                          "{target_half_width: meshes}", "{target_half_width: [0.1]}"}) {
+  for (const char* bad :
+       {"{target_half_width: 0}", "{target_half_width: -0.01}", "{target_half_width: 2}",
+        "{target_half_width: meshes}", "{target_half_width: [0.1]}"}) {
     const std::string s = write_scene(dir, head + bad + "\n");
     expect_refusal(granular("run " + s + " --dry-run"), s + ":3: key 'granular.target_half_width'");
   }

@@ -1,19 +1,21 @@
 // The precision target a scene asks for and the shock position half-width
 // it is compared with (no granular run).
+#include "pipeline/precision_goal.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "pipeline/precision_goal.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
 
 namespace {
 
 scene::Scene wedge(const std::string& granular_section) {
-  return scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: 10, length: 2.0}\nfreestream: {mach: 3}\n"
-                            "mesh: {h_min: 0.02}\npipeline: {levels: [2, 1.4, 0.5]}\ngranular: " +
-                            granular_section + "\n");
+  return scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 2.0}\nfreestream: {mach: 3}\n"
+      "mesh: {h_min: 0.02}\npipeline: {levels: [2, 1.4, 0.5]}\ngranular: " +
+      granular_section + "\n");
 }
 
 }  // namespace

@@ -6,9 +6,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "granular/flow_run.hpp"
 #include "pipeline/run.hpp"
@@ -95,5 +94,6 @@ TEST(Precision, RerunStopsWhereTheRecordedChecksSay) {
   const nlohmann::json& stop = checks[expect_stop];
   EXPECT_EQ(g["averaging_flow_throughs"].get<double>(), stop["flow_throughs"].get<double>());
   EXPECT_EQ(g["precision"]["half_width"].get<double>(), stop["half_width"].get<double>());
-  EXPECT_EQ(second["shock_angle_deg"].get<double>(), stop["details"]["shock_angle_deg"].get<double>());
+  EXPECT_EQ(second["shock_angle_deg"].get<double>(),
+            stop["details"]["shock_angle_deg"].get<double>());
 }

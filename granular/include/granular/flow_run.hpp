@@ -37,7 +37,7 @@ struct PrecisionMeasure {
   // 95% half-width of the shock position, body lengths; NaN while no shock
   // is found (the averaging then goes on).
   double half_width = std::numeric_limits<double>::quiet_NaN();
-  std::string quantity;   // what it was derived from, e.g. "shock_angle", "standoff"
+  std::string quantity;  // what it was derived from, e.g. "shock_angle", "standoff"
   nlohmann::json details = nlohmann::json::object();  // recorded with the check
 };
 
@@ -65,8 +65,8 @@ struct PrecisionGoal {
 // replica keeps its simulation between chunks and snapshot times count from
 // the end of its warm-up, so a run stopped after N flow-through times has
 // the fields of an uninterrupted run with averaging: N (replicas >= 2).
-FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const ReplicaGroup& group = {},
-                          const PrecisionGoal& goal = {});
+FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o,
+                          const ReplicaGroup& group = {}, const PrecisionGoal& goal = {});
 
 // Chunking of the averaging, in flow-through times: the first precision
 // check, and the interval between checks (also the budget's granularity).

@@ -63,8 +63,13 @@ FlowConfig seeded(const FlowSetup& f, std::uint64_t seed) {
 
 }  // namespace
 
-FlowReplica::FlowReplica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan)
-    : f_(&f), geometry_(&geometry), plan_(plan), sim_(seeded(f, plan.seed)), binner_(f, geometry),
+FlowReplica::FlowReplica(const FlowSetup& f, const scene::Lattice& geometry,
+                         const ReplicaPlan& plan)
+    : f_(&f),
+      geometry_(&geometry),
+      plan_(plan),
+      sim_(seeded(f, plan.seed)),
+      binner_(f, geometry),
       dt_sample_(snapshot_interval(f, geometry)) {
   const Stats s0 = sim_.stats();
   energy_initial_ = s0.kinetic_energy;
@@ -85,7 +90,8 @@ void FlowReplica::warm_up(std::atomic<double>* progress) {
   if (plan_.warmup) {
     const double t_end = sim_.time() + *plan_.warmup * tau;
     const double chunk = kCheckFlowThroughs * tau;
-    while (sim_.time() < t_end && !scene::interrupted()) advance(std::min(t_end, sim_.time() + chunk), progress);
+    while (sim_.time() < t_end && !scene::interrupted())
+      advance(std::min(t_end, sim_.time() + chunk), progress);
     steady_detected_ = false;
   } else {
     const double dt = kCheckFlowThroughs * tau / kCountsPerCheck;
@@ -114,7 +120,8 @@ void FlowReplica::warm_up(std::atomic<double>* progress) {
 void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
   warm_up(progress);
   if (snapshots <= 0 || scene::interrupted()) return;
-  const std::size_t ncell = static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
+  const std::size_t ncell =
+      static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
   const std::size_t first = blocks_.size();
   blocks_.resize(first + static_cast<std::size_t>(plan_.batches), FieldSums(ncell));
   for (long k = 0; k < snapshots && !scene::interrupted(); ++k) {
@@ -134,10 +141,12 @@ void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
 
 ReplicaOutcome FlowReplica::outcome() const {
   ReplicaOutcome out;
-  const std::size_t ncell = static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
+  const std::size_t ncell =
+      static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
   const auto batches = static_cast<std::size_t>(plan_.batches);
   out.blocks.assign(batches, FieldSums(ncell));
-  for (std::size_t j = 0; j < blocks_.size(); ++j) out.blocks[j * batches / blocks_.size()] += blocks_[j];
+  for (std::size_t j = 0; j < blocks_.size(); ++j)
+    out.blocks[j * batches / blocks_.size()] += blocks_[j];
   out.stats = sim_.stats();
   out.energy_initial = energy_initial_;
   out.particles_initial = particles_initial_;
@@ -152,11 +161,12 @@ void FlowReplica::write_snapshot() const {
   if (!plan_.snapshot_path.empty()) write_particles(sim_, *f_, plan_.snapshot_path);
 }
 
-ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan,
-                           std::atomic<double>* progress) {
+ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry,
+                           const ReplicaPlan& plan, std::atomic<double>* progress) {
   FlowReplica r(f, geometry, plan);
   const double tau = f.flow_through_time;
-  r.average(std::max<long>(1, std::lround(plan.averaging * tau / snapshot_interval(f, geometry))), progress);
+  r.average(std::max<long>(1, std::lround(plan.averaging * tau / snapshot_interval(f, geometry))),
+            progress);
   const ReplicaOutcome out = r.outcome();
   r.write_snapshot();
   return out;

@@ -4,8 +4,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -92,13 +92,16 @@ std::vector<int> replicas_of(const ReplicaGroup& group, int replicas) {
 // failure anywhere is rethrown on every rank.
 class ReplicaPool {
  public:
-  ReplicaPool(const scene::Scene& s, const FlowSetup& f, const scene::Lattice& geometry, const RunOptions& o,
-              const ReplicaGroup& group, const Layout& l, double planned_flow_throughs)
-      : group_(group), l_(l), mine_(replicas_of(group, l.replicas)),
+  ReplicaPool(const scene::Scene& s, const FlowSetup& f, const scene::Lattice& geometry,
+              const RunOptions& o, const ReplicaGroup& group, const Layout& l,
+              double planned_flow_throughs)
+      : group_(group),
+        l_(l),
+        mine_(replicas_of(group, l.replicas)),
         nthreads_(std::max(1, std::min(o.np, static_cast<int>(mine_.size())))),
         bar_("granular " + s.name,
-             (s.granular.warmup.value_or(kWarmupGuessFlowThroughs) + planned_flow_throughs) * f.flow_through_time *
-                 static_cast<double>(mine_.size()),
+             (s.granular.warmup.value_or(kWarmupGuessFlowThroughs) + planned_flow_throughs) *
+                 f.flow_through_time * static_cast<double>(mine_.size()),
              "t") {
     const scene::GranularParams& p = s.granular;
     for (const int i : mine_) {
@@ -126,7 +129,8 @@ class ReplicaPool {
     for (std::size_t k = 0; k < mine_.size(); ++k) {
       const std::vector<double> v = pack(replicas_[k]->outcome());
       std::copy(v.begin(), v.end(),
-                all.begin() + static_cast<std::ptrdiff_t>(l_.stride * static_cast<std::size_t>(mine_[k])));
+                all.begin() +
+                    static_cast<std::ptrdiff_t>(l_.stride * static_cast<std::size_t>(mine_[k])));
     }
     if (group_.sum && group_.size > 1) group_.sum(all);
     return all;
@@ -279,15 +283,18 @@ struct AveragingOutcome {
   PrecisionMeasure last;
 };
 
-FlowResult fields_so_far(const ReplicaPool& pool, const FlowSetup& f, const scene::Lattice& geometry,
-                         const Layout& l, std::uint64_t seed, Combined& c) {
+FlowResult fields_so_far(const ReplicaPool& pool, const FlowSetup& f,
+                         const scene::Lattice& geometry, const Layout& l, std::uint64_t seed,
+                         Combined& c) {
   c = combine(pool.gather(), l, seed);
   FlowResult r;
   if (!c.blocks.empty()) r.fields = make_fields(f, geometry, c.blocks);
   return r;
 }
 
-bool anyone(const ReplicaGroup& group, bool here) { return group.any ? group.any(here) : here; }
+bool anyone(const ReplicaGroup& group, bool here) {
+  return group.any ? group.any(here) : here;
+}
 
 // Chunks of averaging until the goal is met, the budget would be overrun or
 // the planned time is averaged. Without a goal or a budget: one chunk.
@@ -296,11 +303,14 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
                          const PrecisionGoal& goal, const scene::CpuStopwatch& cpu) {
   const double tau = f.flow_through_time;
   const double dt = snapshot_interval(f, geometry);
-  auto snapshots_for = [&](double flow_throughs) { return std::max<long>(1, std::lround(flow_throughs * tau / dt)); };
+  auto snapshots_for = [&](double flow_throughs) {
+    return std::max<long>(1, std::lround(flow_throughs * tau / dt));
+  };
   const long cap = snapshots_for(goal.active() ? p.max_averaging : p.averaging);
   const bool chunked = goal.active() || p.cpu_budget.has_value();
   const long every = snapshots_for(kCheckEveryFlowThroughs);
-  long chunk = chunked ? std::min(cap, goal.active() ? snapshots_for(kFirstCheckFlowThroughs) : every) : cap;
+  long chunk =
+      chunked ? std::min(cap, goal.active() ? snapshots_for(kFirstCheckFlowThroughs) : every) : cap;
 
   AveragingOutcome out;
   pool.average(0);  // the warm-up, so that the first chunk's cost is the averaging's
@@ -316,12 +326,13 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       Combined c;
       const FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
       out.last = goal.measure(r.fields);
-      out.checks.push_back({{"flow_throughs", static_cast<double>(out.snapshots) * dt / tau},
-                            {"half_width", std::isfinite(out.last.half_width) ? nlohmann::json(out.last.half_width)
-                                                                              : nlohmann::json(nullptr)},
-                            {"quantity", out.last.quantity},
-                            {"cpu_seconds", cpu.seconds()},
-                            {"details", out.last.details}});
+      out.checks.push_back(
+          {{"flow_throughs", static_cast<double>(out.snapshots) * dt / tau},
+           {"half_width", std::isfinite(out.last.half_width) ? nlohmann::json(out.last.half_width)
+                                                             : nlohmann::json(nullptr)},
+           {"quantity", out.last.quantity},
+           {"cpu_seconds", cpu.seconds()},
+           {"details", out.last.details}});
       if (anyone(group, out.last.half_width <= goal.target)) {
         out.stopped_by = "precision";
         break;
@@ -347,7 +358,9 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
 
 nlohmann::json precision_summary(const PrecisionGoal& goal, const AveragingOutcome& a) {
   if (!goal.active()) return nullptr;
-  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  auto num = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
   return {{"target_half_width", goal.target},
           {"target_source", goal.target_source},
           {"half_width", num(a.last.half_width)},
@@ -368,8 +381,9 @@ FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const Repl
   if (!o.out_dir.empty()) scene::make_dirs(o.out_dir);
   if (p.snapshots && !o.out_dir.empty()) scene::make_dirs(o.out_dir + "/snapshots");
   if (!goal.active() && (p.target_half_width || p.target_from_mesh) && group.rank == 0)
-    scene::log_line("granular: granular.target_half_width is judged by the pipeline (it needs shockfit); "
-                    "this run averages granular.averaging");
+    scene::log_line(
+        "granular: granular.target_half_width is judged by the pipeline (it needs shockfit); "
+        "this run averages granular.averaging");
 
   ReplicaPool pool(s, f, geometry, o, group, l, goal.active() ? p.max_averaging : p.averaging);
   const AveragingOutcome a = average(pool, p, f, geometry, l, group, goal, cpu);

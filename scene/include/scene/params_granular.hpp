@@ -44,7 +44,7 @@ struct GranularParams {
   // budget is spent, or max_averaging flow-through times are averaged. The
   // pipeline judges the half-width (it runs shockfit); unset: `averaging`.
   std::optional<double> target_half_width;  // body lengths
-  bool target_from_mesh = false;       // `target_half_width: mesh`: k h_min of the finest clustered grid
+  bool target_from_mesh = false;  // `target_half_width: mesh`: k h_min of the finest clustered grid
   std::optional<double> cpu_budget;    // CPU seconds of the granular stage
   double max_averaging = 16.0;         // flow-through times, with a target
   int replicas = 2;                    // independent seeds (seed, seed+1, ...)

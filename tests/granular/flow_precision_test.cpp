@@ -13,8 +13,9 @@
 
 namespace {
 
-// Flow-through times are whole numbers of snapshots: the reported averaging
-// matches the requested one to rounding of one snapshot in ~300.
+// Chunks end at the whole snapshot nearest to each check time: on this
+// 40-cell lattice a snapshot is ~1/80 flow-through time, half of it the
+// rounding.
 constexpr double kFlowThroughTol = 0.01;
 
 const char* kSmallWedge = R"(
@@ -52,23 +53,44 @@ void expect_same_fields(const granular::FlowResult& a, const granular::FlowResul
 
 }  // namespace
 
-TEST(FlowPrecision, StopsWhenTheMeasureMeetsTheTarget) {
-  // Checks at 1, 1.5, 2 flow-through times give 1, 1/2, 1/3: a target of
-  // 0.4 is met at the third.
+TEST(FlowPrecision, StopsWhenTwoChecksInARowMeetTheTarget) {
+  // Checks at 1, 1.5, 2, 2.5 flow-through times give 1, 1/2, 1/3, 1/4: a
+  // target of 0.4 is met by the third and, the second time in a row, by the
+  // fourth.
   const scene::Scene s = scene::parse_scene(kSmallWedge);
   auto calls = std::make_shared<int>(0);
   const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, counting_goal(0.4, calls));
   const nlohmann::json& j = r.summary;
   EXPECT_EQ(j["stopped_by"], "precision");
-  EXPECT_EQ(*calls, 3);
+  EXPECT_EQ(*calls, 4);
   EXPECT_NEAR(j["averaging_flow_throughs"].get<double>(),
-              granular::kFirstCheckFlowThroughs + 2 * granular::kCheckEveryFlowThroughs,
+              granular::kFirstCheckFlowThroughs + 3 * granular::kCheckEveryFlowThroughs,
               kFlowThroughTol);
-  EXPECT_NEAR(j["precision"]["half_width"].get<double>(), 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(j["precision"]["half_width"].get<double>(), 0.25, 1e-15);
   EXPECT_EQ(j["precision"]["target_half_width"], 0.4);
-  ASSERT_EQ(j["precision"]["checks"].size(), 3u);
+  ASSERT_EQ(j["precision"]["checks"].size(), 4u);
   EXPECT_GT(j["cpu_seconds"].get<double>(), 0.0);
   EXPECT_TRUE(j["cpu_budget"].is_null());
+}
+
+TEST(FlowPrecision, AChangeOfQuantityRestartsTheCount) {
+  // Every check meets the target, but the quantity alternates (a shock
+  // classified differently from one chunk to the next): never two in a row
+  // of one kind, so the run goes on to max_averaging.
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.max_averaging = 2.0;
+  auto calls = std::make_shared<int>(0);
+  granular::PrecisionGoal g;
+  g.target = 1.0;
+  g.measure = [calls](const scene::Lattice&) {
+    granular::PrecisionMeasure m;
+    m.half_width = 0.1;
+    m.quantity = ++*calls % 2 ? "standoff" : "shock_angle";
+    return m;
+  };
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "averaging");
+  EXPECT_EQ(*calls, 3);
 }
 
 TEST(FlowPrecision, StopsAtTheBudgetOnAnImpossibleTarget) {

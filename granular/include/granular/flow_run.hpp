@@ -58,8 +58,8 @@ struct PrecisionGoal {
 // is true. InputError for scenes it cannot model, RunError for failed runs.
 //
 // The averaging stops at the first of (summary.stopped_by): "precision"
-// (goal active and met, checked every kCheckEveryFlowThroughs from
-// kFirstCheckFlowThroughs on), "budget" (granular.cpu_budget: the next chunk
+// (goal active and met by two consecutive checks with the same quantity;
+// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on), "budget" (granular.cpu_budget: the next chunk
 // would overrun it at the last chunk's rate) and "averaging"
 // (granular.max_averaging with a goal, else granular.averaging). Every
 // replica keeps its simulation between chunks and snapshot times count from

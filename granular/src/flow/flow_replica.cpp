@@ -122,8 +122,12 @@ void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
   if (snapshots <= 0 || scene::interrupted()) return;
   const std::size_t ncell =
       static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
-  const std::size_t first = blocks_.size();
-  blocks_.resize(first + static_cast<std::size_t>(plan_.batches), FieldSums(ncell));
+  // One batch (two or more replicas): one running sum, so that chunks add
+  // snapshots in the order, and with the round-off, of one long run.
+  // Several: each chunk's own batches, regrouped by outcome().
+  const auto batches = static_cast<std::size_t>(plan_.batches);
+  if (batches > 1 || blocks_.empty()) blocks_.resize(blocks_.size() + batches, FieldSums(ncell));
+  const std::size_t first = blocks_.size() - batches;
   for (long k = 0; k < snapshots && !scene::interrupted(); ++k) {
     // Snapshot times count from the end of the warm-up over all chunks, so
     // chunked averaging samples exactly the times of one long run.

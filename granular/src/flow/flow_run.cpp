@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -296,6 +297,17 @@ bool anyone(const ReplicaGroup& group, bool here) {
   return group.any ? group.any(here) : here;
 }
 
+// The target counts as met when two consecutive checks meet it with the
+// same kind of shock. The interval is itself an estimate and moves by
+// +-10-20% from chunk to chunk (wedge M4.5/12, docs/granular_flow.md): one
+// check alone stops on the first lucky dip, and a noisy early fit that
+// classifies an attached shock as a bow shock would be judged by the wrong
+// quantity.
+bool met(const PrecisionGoal& goal, const PrecisionMeasure& previous, const PrecisionMeasure& now) {
+  return now.half_width <= goal.target && previous.half_width <= goal.target &&
+         previous.quantity == now.quantity;
+}
+
 // Chunks of averaging until the goal is met, the budget would be overrun or
 // the planned time is averaged. Without a goal or a budget: one chunk.
 AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, const FlowSetup& f,
@@ -308,9 +320,15 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
   };
   const long cap = snapshots_for(goal.active() ? p.max_averaging : p.averaging);
   const bool chunked = goal.active() || p.cpu_budget.has_value();
-  const long every = snapshots_for(kCheckEveryFlowThroughs);
-  long chunk =
-      chunked ? std::min(cap, goal.active() ? snapshots_for(kFirstCheckFlowThroughs) : every) : cap;
+  // Chunks end at whole snapshots nearest to 1, 1.5, 2, ... flow-through
+  // times (counted from the start, so rounding does not accumulate), the
+  // last at the cap.
+  double boundary = chunked ? (goal.active() ? kFirstCheckFlowThroughs : kCheckEveryFlowThroughs)
+                            : std::numeric_limits<double>::infinity();
+  auto chunk_end = [&](long done) {
+    return std::clamp(std::isfinite(boundary) ? snapshots_for(boundary) : cap, done + 1, cap);
+  };
+  long chunk = chunk_end(0);
 
   AveragingOutcome out;
   pool.average(0);  // the warm-up, so that the first chunk's cost is the averaging's
@@ -325,6 +343,7 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
     if (goal.active()) {
       Combined c;
       const FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
+      const PrecisionMeasure previous = out.last;
       out.last = goal.measure(r.fields);
       out.checks.push_back(
           {{"flow_throughs", static_cast<double>(out.snapshots) * dt / tau},
@@ -333,7 +352,7 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
            {"quantity", out.last.quantity},
            {"cpu_seconds", cpu.seconds()},
            {"details", out.last.details}});
-      if (anyone(group, out.last.half_width <= goal.target)) {
+      if (anyone(group, met(goal, previous, out.last))) {
         out.stopped_by = "precision";
         break;
       }
@@ -342,7 +361,8 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       out.stopped_by = "averaging";
       break;
     }
-    const long next = std::min(every, cap - out.snapshots);
+    boundary += kCheckEveryFlowThroughs;
+    const long next = chunk_end(out.snapshots) - out.snapshots;
     const double now = cpu.seconds();
     // The next chunk at this chunk's rate (its check included).
     const double next_cost = (now - mark) * static_cast<double>(next) / static_cast<double>(chunk);

@@ -96,8 +96,9 @@ TEST(Precision, RerunStopsWhereTheRecordedChecksSay) {
   auto hw = [&](std::size_t k) { return checks[k]["half_width"].get<double>(); };
   const double target = std::max(hw(1), hw(2));
   std::size_t expect_stop = 1;
-  while (expect_stop < 3 && !(hw(expect_stop) <= target && hw(expect_stop - 1) <= target &&
-                              checks[expect_stop]["quantity"] == checks[expect_stop - 1]["quantity"]))
+  while (expect_stop < 3 &&
+         !(hw(expect_stop) <= target && hw(expect_stop - 1) <= target &&
+           checks[expect_stop]["quantity"] == checks[expect_stop - 1]["quantity"]))
     ++expect_stop;
 
   s.granular.target_half_width = target;

@@ -59,9 +59,10 @@ struct PrecisionGoal {
 //
 // The averaging stops at the first of (summary.stopped_by): "precision"
 // (goal active and met by two consecutive checks with the same quantity;
-// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on), "budget" (granular.cpu_budget: the next chunk
-// would overrun it at the last chunk's rate) and "averaging"
-// (granular.max_averaging with a goal, else granular.averaging). Every
+// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
+// "budget" (granular.cpu_budget: the next chunk would overrun it at the
+// last chunk's rate) and "averaging" (granular.max_averaging with a goal,
+// else granular.averaging). Every
 // replica keeps its simulation between chunks and snapshot times count from
 // the end of its warm-up, so a run stopped after N flow-through times has
 // the fields of an uninterrupted run with averaging: N (replicas >= 2).

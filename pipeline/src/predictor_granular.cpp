@@ -9,6 +9,26 @@
 
 namespace pipeline {
 
+namespace {
+
+// What stopped the granular averaging, at what precision and cost
+// (docs/granular_flow.md, "Precision on demand").
+nlohmann::json averaging_report(const nlohmann::json& r) {
+  const nlohmann::json g = r.value("granular", nlohmann::json::object());
+  const nlohmann::json precision = g.value("precision", nlohmann::json());
+  auto from = [](const nlohmann::json& j, const char* key) {
+    return j.is_object() && j.contains(key) ? j[key] : nlohmann::json(nullptr);
+  };
+  return {{"stopped_by", from(g, "stopped_by")},
+          {"flow_throughs", from(g, "averaging_flow_throughs")},
+          {"cpu_seconds", from(g, "cpu_seconds")},
+          {"cpu_budget", from(g, "cpu_budget")},
+          {"target_half_width", from(precision, "target_half_width")},
+          {"half_width", from(r, "shock_position_half_width")}};
+}
+
+}  // namespace
+
 Prediction GranularPredictor::predict(const PredictContext& cx) const {
   const nlohmann::json r = run_prediction(cx.scene, cx.out_dir, cx.np, cx.force);
   Prediction p;
@@ -29,7 +49,8 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
     }
   p.details = {{"restitution", cx.scene.granular.restitution},
                {"granular", r.value("granular", nlohmann::json::object())},
-               {"field", r.value("field", "")}};
+               {"field", r.value("field", "")},
+               {"averaging", averaging_report(r)}};
   return p;
 }
 

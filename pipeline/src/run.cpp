@@ -11,6 +11,7 @@
 #include "pipeline/grid_convergence.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "json_fields.hpp"
+#include "pipeline/precision_goal.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/stage_cache.hpp"
@@ -178,8 +179,13 @@ std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
   StageCache cache(out_dir);
-  const std::string fp_g = fingerprint({scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
-                                        scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")});
+  // A target taken from the mesh moves with the mesh and the levels.
+  const granular::PrecisionGoal goal = precision_goal(s);
+  std::vector<std::string> parts{
+      scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
+      scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")};
+  if (goal.active()) parts.push_back(nlohmann::json(goal.target).dump());
+  const std::string fp_g = fingerprint(parts);
   nlohmann::json gsum;
   scene::Lattice fields;
   if (!force && cache.fresh("granular", fp_g)) {
@@ -191,7 +197,7 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     go.out_dir = cache.dir("granular");
     go.np = np;
     const scene::CpuStopwatch cpu;
-    auto r = granular::run_flow_scene(s, go);
+    auto r = granular::run_flow_scene(s, go, {}, goal);
     check_interrupt("the granular stage");
     if (r.summary.value("interrupted", false))
       throw scene::RunError("interrupted during the granular stage; rerun to resume");
@@ -210,6 +216,10 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     const auto r = shockfit::locate_shock(s, fields);
     shockfit::write_outputs(s, fields, r, cache.dir("shockfit"));
     ssum = r.summary();
+    const double position_half_width = shock_position_half_width(s, r);
+    ssum["shock_position_half_width"] = std::isfinite(position_half_width)
+                                            ? nlohmann::json(position_half_width)
+                                            : nlohmann::json(nullptr);
     ssum["stage_cpu_seconds"] = cpu.seconds();
     cache.mark_done("shockfit", fp_s, ssum);
   }

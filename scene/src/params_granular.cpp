@@ -1,7 +1,9 @@
-#include "params_parse.hpp"
-
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <string>
+
+#include "params_parse.hpp"
 
 namespace scene {
 
@@ -14,9 +16,29 @@ constexpr double kMaxMach = 50.0;
 // Warm-up and averaging in flow-through times: beyond this a run is a typo
 // that would never finish.
 constexpr double kMaxFlowThroughs = 1e6;
+// A shock position known to worse than a body length is no prediction: the
+// largest explicit precision target (body lengths).
+constexpr double kMaxTargetHalfWidth = 1.0;
 // Gravity per unit mass, in T/(m d): a thousand times the thermal scale
 // already throws every disk onto the floor within one collision time.
 constexpr double kMaxGravity = 1e3;
+// `target_half_width`: a half-width in body lengths, or `mesh`.
+void parse_precision_target(Section& s, GranularParams& p) {
+  const std::optional<std::string> text = s.opt_string("target_half_width");
+  if (!text) return;
+  if (*text == "mesh") {
+    p.target_from_mesh = true;
+    return;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(text->c_str(), &end);
+  const Range r{0.0, kMaxTargetHalfWidth, true, false};
+  if (text->empty() || end != text->c_str() + text->size() || !r.contains(v))
+    s.fail("target_half_width", "expected a half-width in body lengths (" + r.describe() +
+                                    ") or 'mesh', got '" + *text + "'");
+  p.target_half_width = v;
+}
+
 }  // namespace
 
 GranularParams parse_granular(Section& s) {
@@ -45,6 +67,10 @@ GranularParams parse_granular(Section& s) {
   p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
   p.warmup = s.opt_number("warmup", {0.0, kMaxFlowThroughs});
   p.averaging = s.number("averaging", p.averaging, {0.0, kMaxFlowThroughs, true, false});
+  parse_precision_target(s, p);
+  p.cpu_budget = s.opt_number("cpu_budget", positive());
+  p.max_averaging =
+      s.number("max_averaging", p.max_averaging, {0.0, kMaxFlowThroughs, true, false});
   p.replicas = static_cast<int>(s.integer("replicas", p.replicas, 1, 10000));
   p.snapshots = s.boolean("snapshots", p.snapshots);
   return p;
@@ -69,6 +95,12 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
   emit_kv(e, "lattice_ny", p.lattice_ny);
   emit_opt(e, "warmup", p.warmup);
   emit_kv(e, "averaging", p.averaging);
+  if (p.target_from_mesh)
+    emit_kv(e, "target_half_width", "mesh");
+  else
+    emit_opt(e, "target_half_width", p.target_half_width);
+  emit_opt(e, "cpu_budget", p.cpu_budget);
+  emit_kv(e, "max_averaging", p.max_averaging);
   emit_kv(e, "replicas", p.replicas);
   emit_kv(e, "snapshots", p.snapshots);
   e << YAML::EndMap;

@@ -7,7 +7,7 @@ add_stage_test(NAME granular_flow_tests PREFIX granular
 # The steady-state rule is private to granular_core (src/flow).
 target_include_directories(granular_flow_tests PRIVATE ${PROJECT_SOURCE_DIR}/granular/src/flow)
 add_stage_test(NAME granular_flow_run_tests PREFIX granular
-  SOURCES flow_run_test.cpp flow_hard_cases_test.cpp flow_cli_test.cpp flow_support.cpp
+  SOURCES flow_run_test.cpp flow_precision_test.cpp flow_hard_cases_test.cpp flow_cli_test.cpp flow_support.cpp
   LIBS granular_core
   LABELS fast TIMEOUT 120)
 add_dependencies(granular_flow_run_tests granular)

@@ -123,3 +123,25 @@ TEST(Refuse, OutContainingTheSceneIsRefused) {
                  "--out " + dir + ": equals, lies inside or contains the scene file");
   EXPECT_TRUE(fs::exists(s));
 }
+
+TEST(Refuse, PrecisionKeysOutOfRangeAreRefusedNamingTheKey) {
+  // Precision on demand (docs/granular_flow.md): a target in (0, 1] body
+  // lengths or `mesh`, a positive CPU budget, a positive averaging cap.
+  const std::string dir = fresh("precision");
+  const std::string head = "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\ngranular: ";
+  for (const char* bad :
+       {"{target_half_width: 0}", "{target_half_width: -0.01}", "{target_half_width: 2}",
+        "{target_half_width: meshes}", "{target_half_width: [0.1]}"}) {
+    const std::string s = write_scene(dir, head + bad + "\n");
+    expect_refusal(granular("run " + s + " --dry-run"), s + ":3: key 'granular.target_half_width'");
+  }
+  for (const char* bad : {"{cpu_budget: 0}", "{cpu_budget: -5}", "{cpu_budget: soon}"}) {
+    const std::string s = write_scene(dir, head + bad + "\n");
+    expect_refusal(granular("run " + s + " --dry-run"), s + ":3: key 'granular.cpu_budget'");
+  }
+  for (const char* bad : {"{max_averaging: 0}", "{max_averaging: 1e9}"}) {
+    const std::string s = write_scene(dir, head + bad + "\n");
+    expect_refusal(granular("run " + s + " --dry-run"), s + ":3: key 'granular.max_averaging'");
+  }
+  EXPECT_FALSE(has_temporaries(dir));
+}

@@ -1,12 +1,16 @@
 #pragma once
 // One replica of the stream: warm-up until steady (detected from the number
 // of disks in the domain, or a fixed time), then averaging with regular
-// snapshots binned into the lattice.
+// snapshots binned into the lattice. A FlowReplica keeps its simulation
+// between calls, so the averaging can go on in chunks (precision on demand)
+// with the same snapshots, at the same times, as one uninterrupted run.
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "granular/engine.hpp"
 #include "granular/flow_fields.hpp"
 #include "granular/flow_setup.hpp"
 
@@ -31,6 +35,42 @@ struct ReplicaOutcome {
   bool interrupted = false;
 };
 
+// Engine time between two averaging snapshots: a disk at the inflow speed
+// crosses about half a lattice cell.
+double snapshot_interval(const FlowSetup& f, const scene::Lattice& geometry);
+
+class FlowReplica {
+ public:
+  // Builds the replica's simulation (prefilled domain, seed plan.seed).
+  // plan.averaging is not used: the caller asks for snapshots.
+  FlowReplica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan);
+  // Warm-up (plan.warmup, or until steady); once only, before average().
+  void warm_up(std::atomic<double>* progress);
+  // `snapshots` more averaging snapshots, one chunk: its snapshots are split
+  // into plan.batches consecutive blocks.
+  void average(long snapshots, std::atomic<double>* progress);
+  // Everything so far, the chunks' blocks regrouped into plan.batches
+  // consecutive blocks (one chunk: exactly its blocks).
+  ReplicaOutcome outcome() const;
+  // Final particles to plan.snapshot_path, when set.
+  void write_snapshot() const;
+
+ private:
+  const FlowSetup* f_;
+  const scene::Lattice* geometry_;
+  ReplicaPlan plan_;
+  FlowSimulation sim_;
+  Binner binner_;
+  double dt_sample_ = 0, t0_ = 0, last_reported_ = 0;
+  long taken_ = 0;
+  double count_sum_ = 0, energy_initial_ = 0, particles_initial_ = 0, warmup_time_ = 0;
+  bool steady_detected_ = false, warmed_ = false;
+  std::vector<FieldSums> blocks_;  // plan.batches per chunk, in order
+
+  void advance(double t, std::atomic<double>* progress);
+};
+
+// One uninterrupted run: warm-up, then plan.averaging flow-through times.
 // `progress` accumulates simulated time (engine units) for the caller's
 // progress display. Polls scene::interrupted() between chunks.
 ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan,

@@ -3,6 +3,8 @@
 // the body (threads, and MPI ranks when the executable provides a group),
 // averaged into one lattice of fields with per-cell standard errors.
 #include <functional>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -29,12 +31,47 @@ struct ReplicaGroup {
   std::function<bool(bool)> any;
 };
 
+// How precise the shock of fields averaged so far is. The library knows no
+// shock locator (a later stage): the caller measures it.
+struct PrecisionMeasure {
+  // 95% half-width of the shock position, body lengths; NaN while no shock
+  // is found (the averaging then goes on).
+  double half_width = std::numeric_limits<double>::quiet_NaN();
+  std::string quantity;  // what it was derived from, e.g. "shock_angle", "standoff"
+  nlohmann::json details = nlohmann::json::object();  // recorded with the check
+};
+
+// Precision on demand: average until measure(fields so far).half_width <=
+// target. Without a measure the run averages granular.averaging.
+struct PrecisionGoal {
+  double target = std::numeric_limits<double>::quiet_NaN();  // body lengths
+  std::string target_source;  // how the target was set, for the summary
+  std::function<PrecisionMeasure(const scene::Lattice& fields)> measure;
+  bool active() const { return static_cast<bool>(measure); }
+};
+
 // Runs granular.replicas replicas (seeds seed, seed+1, ...), o.np at a time
 // in threads on each member of `group`; replica i runs on rank i % size.
 // Rank 0 writes o.out_dir/fields.vti and summary.json atomically (plus
 // particle snapshots when granular.snapshots); every rank returns the result.
 // On Ctrl-C the fields averaged so far are written and summary.interrupted
 // is true. InputError for scenes it cannot model, RunError for failed runs.
-FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const ReplicaGroup& group = {});
+//
+// The averaging stops at the first of (summary.stopped_by): "precision"
+// (goal active and met by two consecutive checks with the same quantity;
+// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
+// "budget" (granular.cpu_budget: the next chunk would overrun it at the
+// last chunk's rate) and "averaging" (granular.max_averaging with a goal,
+// else granular.averaging). Every
+// replica keeps its simulation between chunks and snapshot times count from
+// the end of its warm-up, so a run stopped after N flow-through times has
+// the fields of an uninterrupted run with averaging: N (replicas >= 2).
+FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o,
+                          const ReplicaGroup& group = {}, const PrecisionGoal& goal = {});
+
+// Chunking of the averaging, in flow-through times: the first precision
+// check, and the interval between checks (also the budget's granularity).
+inline constexpr double kFirstCheckFlowThroughs = 1.0;
+inline constexpr double kCheckEveryFlowThroughs = 0.5;
 
 }  // namespace granular

@@ -48,29 +48,51 @@ bool counts_steady(const std::vector<double>& counts, std::size_t window) {
   return counts_settled(counts, window, c.rel_tol, c.noise_sigmas);
 }
 
-ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan,
-                           std::atomic<double>* progress) {
-  FlowConfig cfg = f.config;
-  cfg.seed = plan.seed;
-  FlowSimulation sim(cfg);
-  ReplicaOutcome out;
-  const Stats s0 = sim.stats();
-  out.energy_initial = s0.kinetic_energy;
-  out.particles_initial = static_cast<double>(s0.particles);
-  const double tau = f.flow_through_time;
-  double last_reported = sim.time();
-  auto advance = [&](double t) {
-    sim.run_until(t);
-    if (progress) progress->fetch_add(sim.time() - last_reported);
-    last_reported = sim.time();
-  };
+double snapshot_interval(const FlowSetup& f, const scene::Lattice& geometry) {
+  const double cell = std::min(geometry.dx, geometry.dy) * f.scale;
+  return kSampleCellFraction * cell / f.config.inflow_speed;
+}
 
-  // Warm-up.
-  if (plan.warmup) {
-    const double t_end = sim.time() + *plan.warmup * tau;
+namespace {
+
+FlowConfig seeded(const FlowSetup& f, std::uint64_t seed) {
+  FlowConfig cfg = f.config;
+  cfg.seed = seed;
+  return cfg;
+}
+
+}  // namespace
+
+FlowReplica::FlowReplica(const FlowSetup& f, const scene::Lattice& geometry,
+                         const ReplicaPlan& plan)
+    : f_(&f),
+      geometry_(&geometry),
+      plan_(plan),
+      sim_(seeded(f, plan.seed)),
+      binner_(f, geometry),
+      dt_sample_(snapshot_interval(f, geometry)) {
+  const Stats s0 = sim_.stats();
+  energy_initial_ = s0.kinetic_energy;
+  particles_initial_ = static_cast<double>(s0.particles);
+  last_reported_ = sim_.time();
+}
+
+void FlowReplica::advance(double t, std::atomic<double>* progress) {
+  sim_.run_until(t);
+  if (progress) progress->fetch_add(sim_.time() - last_reported_);
+  last_reported_ = sim_.time();
+}
+
+void FlowReplica::warm_up(std::atomic<double>* progress) {
+  if (warmed_) return;
+  warmed_ = true;
+  const double tau = f_->flow_through_time;
+  if (plan_.warmup) {
+    const double t_end = sim_.time() + *plan_.warmup * tau;
     const double chunk = kCheckFlowThroughs * tau;
-    while (sim.time() < t_end && !scene::interrupted()) advance(std::min(t_end, sim.time() + chunk));
-    out.steady_detected = false;
+    while (sim_.time() < t_end && !scene::interrupted())
+      advance(std::min(t_end, sim_.time() + chunk), progress);
+    steady_detected_ = false;
   } else {
     const double dt = kCheckFlowThroughs * tau / kCountsPerCheck;
     FlowSteadyCriteria c;
@@ -81,43 +103,76 @@ ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry, c
     int step = 0;
     while (!scene::interrupted()) {
       ++step;
-      advance(step * dt);
-      const double t = sim.time();
-      if (!rule.add(t, static_cast<double>(sim.stats().particles))) continue;
+      advance(step * dt, progress);
+      const double t = sim_.time();
+      if (!rule.add(t, static_cast<double>(sim_.stats().particles))) continue;
       if (rule.steady()) {
-        out.steady_detected = true;
+        steady_detected_ = true;
         break;
       }
       if (t >= kMaxWarmupFlowThroughs * tau - 0.5 * dt) break;
     }
   }
-  out.warmup_time = sim.time();
+  warmup_time_ = sim_.time();
+  t0_ = sim_.time();
+}
 
-  // Averaging.
-  const double cell = std::min(geometry.dx, geometry.dy) * f.scale;
-  const double dt_sample = kSampleCellFraction * cell / f.config.inflow_speed;
-  const auto snaps = std::max<long>(1, std::lround(plan.averaging * tau / dt_sample));
-  const std::size_t ncell = static_cast<std::size_t>(geometry.nx) * static_cast<std::size_t>(geometry.ny);
-  out.blocks.assign(static_cast<std::size_t>(plan.batches), FieldSums(ncell));
-  const Binner binner(f, geometry);
-  const double t0 = sim.time();
-  double count_sum = 0;
-  long taken = 0;
-  for (long k = 0; k < snaps && !scene::interrupted(); ++k) {
-    advance(t0 + static_cast<double>(k + 1) * dt_sample);
-    FieldSums& block = out.blocks[static_cast<std::size_t>(k * plan.batches / snaps)];
-    sim.for_each_particle([&](scene::Vec2 r, scene::Vec2 v) {
-      const std::size_t c = binner.cell_of(r);
+void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
+  warm_up(progress);
+  if (snapshots <= 0 || scene::interrupted()) return;
+  const std::size_t ncell =
+      static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
+  // One batch (two or more replicas): one running sum, so that chunks add
+  // snapshots in the order, and with the round-off, of one long run.
+  // Several: each chunk's own batches, regrouped by outcome().
+  const auto batches = static_cast<std::size_t>(plan_.batches);
+  if (batches > 1 || blocks_.empty()) blocks_.resize(blocks_.size() + batches, FieldSums(ncell));
+  const std::size_t first = blocks_.size() - batches;
+  for (long k = 0; k < snapshots && !scene::interrupted(); ++k) {
+    // Snapshot times count from the end of the warm-up over all chunks, so
+    // chunked averaging samples exactly the times of one long run.
+    advance(t0_ + static_cast<double>(taken_ + 1) * dt_sample_, progress);
+    FieldSums& block = blocks_[first + static_cast<std::size_t>(k * plan_.batches / snapshots)];
+    sim_.for_each_particle([&](scene::Vec2 r, scene::Vec2 v) {
+      const std::size_t c = binner_.cell_of(r);
       if (c != Binner::npos) block.add(c, v);
     });
     block.end_snapshot();
-    count_sum += static_cast<double>(sim.stats().particles);
-    ++taken;
+    count_sum_ += static_cast<double>(sim_.stats().particles);
+    ++taken_;
   }
+}
+
+ReplicaOutcome FlowReplica::outcome() const {
+  ReplicaOutcome out;
+  const std::size_t ncell =
+      static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
+  const auto batches = static_cast<std::size_t>(plan_.batches);
+  out.blocks.assign(batches, FieldSums(ncell));
+  for (std::size_t j = 0; j < blocks_.size(); ++j)
+    out.blocks[j * batches / blocks_.size()] += blocks_[j];
+  out.stats = sim_.stats();
+  out.energy_initial = energy_initial_;
+  out.particles_initial = particles_initial_;
+  out.particles_mean = taken_ > 0 ? count_sum_ / static_cast<double>(taken_) : 0.0;
+  out.warmup_time = warmup_time_;
+  out.steady_detected = steady_detected_;
   out.interrupted = scene::interrupted();
-  out.particles_mean = taken > 0 ? count_sum / static_cast<double>(taken) : 0.0;
-  out.stats = sim.stats();
-  if (!plan.snapshot_path.empty()) write_particles(sim, f, plan.snapshot_path);
+  return out;
+}
+
+void FlowReplica::write_snapshot() const {
+  if (!plan_.snapshot_path.empty()) write_particles(sim_, *f_, plan_.snapshot_path);
+}
+
+ReplicaOutcome run_replica(const FlowSetup& f, const scene::Lattice& geometry,
+                           const ReplicaPlan& plan, std::atomic<double>* progress) {
+  FlowReplica r(f, geometry, plan);
+  const double tau = f.flow_through_time;
+  r.average(std::max<long>(1, std::lround(plan.averaging * tau / snapshot_interval(f, geometry))),
+            progress);
+  const ReplicaOutcome out = r.outcome();
+  r.write_snapshot();
   return out;
 }
 

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
+#include <limits>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -11,6 +14,7 @@
 #include "granular/flow_replica.hpp"
 #include "granular/flow_setup.hpp"
 #include "scene/cli.hpp"
+#include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
@@ -84,64 +88,100 @@ std::vector<int> replicas_of(const ReplicaGroup& group, int replicas) {
   return mine;
 }
 
-// Runs this member's replicas in o.np threads, each packing its outcome into
-// its stride of `all`; the calling thread only shows progress (on rank 0).
-// A failure anywhere is rethrown on every rank. Returns the thread count.
-int run_replicas(const scene::Scene& s, const FlowSetup& f, const scene::Lattice& geometry,
-                 const RunOptions& o, const ReplicaGroup& group, const Layout& l,
-                 const std::vector<int>& mine, std::vector<double>& all) {
-  const scene::GranularParams& p = s.granular;
-  std::atomic<double> progress{0.0};
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  auto worker = [&]() {
-    for (std::size_t k = next++; k < mine.size(); k = next++) {
-      const int i = mine[k];
-      try {
-        ReplicaPlan plan;
-        plan.seed = p.seed + static_cast<std::uint64_t>(i);
-        plan.batches = l.batches;
-        plan.warmup = p.warmup;
-        plan.averaging = p.averaging;
-        if (p.snapshots && !o.out_dir.empty())
-          plan.snapshot_path = o.out_dir + "/snapshots/replica_" + std::to_string(i) + ".csv";
-        const std::vector<double> v = pack(run_replica(f, geometry, plan, &progress));
-        std::copy(
-            v.begin(), v.end(),
-            all.begin() + static_cast<std::ptrdiff_t>(l.stride * static_cast<std::size_t>(i)));
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-      }
+// This member's replicas, each keeping its simulation between chunks, run
+// o.np at a time in threads; the calling thread shows progress (rank 0). A
+// failure anywhere is rethrown on every rank.
+class ReplicaPool {
+ public:
+  ReplicaPool(const scene::Scene& s, const FlowSetup& f, const scene::Lattice& geometry,
+              const RunOptions& o, const ReplicaGroup& group, const Layout& l,
+              double planned_flow_throughs)
+      : group_(group),
+        l_(l),
+        mine_(replicas_of(group, l.replicas)),
+        nthreads_(std::max(1, std::min(o.np, static_cast<int>(mine_.size())))),
+        bar_("granular " + s.name,
+             (s.granular.warmup.value_or(kWarmupGuessFlowThroughs) + planned_flow_throughs) *
+                 f.flow_through_time * static_cast<double>(mine_.size()),
+             "t") {
+    const scene::GranularParams& p = s.granular;
+    for (const int i : mine_) {
+      ReplicaPlan plan;
+      plan.seed = p.seed + static_cast<std::uint64_t>(i);
+      plan.batches = l.batches;
+      plan.warmup = p.warmup;
+      if (p.snapshots && !o.out_dir.empty())
+        plan.snapshot_path = o.out_dir + "/snapshots/replica_" + std::to_string(i) + ".csv";
+      replicas_.push_back(std::make_unique<FlowReplica>(f, geometry, plan));
     }
-  };
-  const int nthreads = std::max(1, std::min(o.np, static_cast<int>(mine.size())));
-  {
-    std::atomic<int> running{nthreads};
+  }
+
+  int threads() const { return nthreads_; }
+
+  // `snapshots` more on every replica (0: the warm-up alone).
+  void average(long snapshots) {
+    run([&](FlowReplica& r) { r.average(snapshots, &progress_); });
+  }
+
+  // Every replica's outcome so far, in its stride of the vector summed over
+  // the group.
+  std::vector<double> gather() const {
+    std::vector<double> all(l_.stride * static_cast<std::size_t>(l_.replicas), 0.0);
+    for (std::size_t k = 0; k < mine_.size(); ++k) {
+      const std::vector<double> v = pack(replicas_[k]->outcome());
+      std::copy(v.begin(), v.end(),
+                all.begin() +
+                    static_cast<std::ptrdiff_t>(l_.stride * static_cast<std::size_t>(mine_[k])));
+    }
+    if (group_.sum && group_.size > 1) group_.sum(all);
+    return all;
+  }
+
+  void finish() {
+    run([](FlowReplica& r) { r.write_snapshot(); });
+    if (group_.rank == 0) bar_.finish();
+  }
+
+ private:
+  const ReplicaGroup& group_;
+  Layout l_;
+  std::vector<int> mine_;
+  int nthreads_;
+  scene::Progress bar_;
+  std::atomic<double> progress_{0.0};
+  std::vector<std::unique_ptr<FlowReplica>> replicas_;
+
+  template <class Task>
+  void run(const Task& task) {
+    std::atomic<std::size_t> next{0};
+    std::mutex failure_mutex;
+    std::exception_ptr failure;
+    std::atomic<int> running{nthreads_};
+    auto worker = [&]() {
+      for (std::size_t k = next++; k < replicas_.size(); k = next++) {
+        try {
+          task(*replicas_[k]);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+        }
+      }
+      --running;
+    };
     std::vector<std::thread> threads;
-    for (int t = 0; t < nthreads; ++t)
-      threads.emplace_back([&]() {
-        worker();
-        --running;
-      });
-    if (group.rank == 0) {
-      const double guess = (p.warmup.value_or(kWarmupGuessFlowThroughs) + p.averaging) * f.flow_through_time;
-      scene::Progress bar("granular " + s.name, guess * static_cast<double>(mine.size()), "t");
+    for (int t = 0; t < nthreads_; ++t) threads.emplace_back(worker);
+    if (group_.rank == 0)
       while (running.load() > 0) {
-        bar.update(progress.load());
+        bar_.update(progress_.load());
         std::this_thread::sleep_for(kProgressPoll);
       }
-      bar.finish();
-    }
     for (auto& t : threads) t.join();
+    const bool failed_here = static_cast<bool>(failure);
+    const bool failed_any = group_.any ? group_.any(failed_here) : failed_here;
+    if (failure) std::rethrow_exception(failure);
+    if (failed_any) throw scene::RunError("a replica failed on another rank");
   }
-  const bool failed_here = static_cast<bool>(failure);
-  const bool failed_any = group.any ? group.any(failed_here) : failed_here;
-  if (failure) std::rethrow_exception(failure);
-  if (failed_any) throw scene::RunError("a replica failed on another rank");
-  return nthreads;
-}
+};
 
 // The replicas' outcomes combined: counters summed, energies and particle
 // counts averaged, field blocks that hold snapshots kept for averaging.
@@ -223,7 +263,6 @@ nlohmann::json flow_summary(const scene::Scene& s, const FlowSetup& f,
       {"warmup_time", c.warm},
       {"warmup_flow_throughs", c.warm / f.flow_through_time},
       {"steady_detected", c.steady_all},
-      {"averaging_time", p.averaging * f.flow_through_time},
       {"simulated_time", c.sim_time},
       {"lattice", {{"nx", geometry.nx}, {"ny", geometry.ny}}},
       {"interrupted", c.interrupted},
@@ -235,30 +274,157 @@ nlohmann::json flow_summary(const scene::Scene& s, const FlowSetup& f,
 
 }  // namespace
 
-FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const ReplicaGroup& group) {
+namespace {
+
+// Where the averaging stopped, and what the precision checks saw.
+struct AveragingOutcome {
+  long snapshots = 0;
+  std::string stopped_by;
+  nlohmann::json checks = nlohmann::json::array();
+  PrecisionMeasure last;
+};
+
+FlowResult fields_so_far(const ReplicaPool& pool, const FlowSetup& f,
+                         const scene::Lattice& geometry, const Layout& l, std::uint64_t seed,
+                         Combined& c) {
+  c = combine(pool.gather(), l, seed);
+  FlowResult r;
+  if (!c.blocks.empty()) r.fields = make_fields(f, geometry, c.blocks);
+  return r;
+}
+
+bool anyone(const ReplicaGroup& group, bool here) {
+  return group.any ? group.any(here) : here;
+}
+
+// The target counts as met when two consecutive checks meet it with the
+// same kind of shock. The interval is itself an estimate and moves by
+// +-10-20% from chunk to chunk (wedge M4.5/12, docs/granular_flow.md): one
+// check alone stops on the first lucky dip, and a noisy early fit that
+// classifies an attached shock as a bow shock would be judged by the wrong
+// quantity.
+bool met(const PrecisionGoal& goal, const PrecisionMeasure& previous, const PrecisionMeasure& now) {
+  return now.half_width <= goal.target && previous.half_width <= goal.target &&
+         previous.quantity == now.quantity;
+}
+
+// Chunks of averaging until the goal is met, the budget would be overrun or
+// the planned time is averaged. Without a goal or a budget: one chunk.
+AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, const FlowSetup& f,
+                         const scene::Lattice& geometry, const Layout& l, const ReplicaGroup& group,
+                         const PrecisionGoal& goal, const scene::CpuStopwatch& cpu) {
+  const double tau = f.flow_through_time;
+  const double dt = snapshot_interval(f, geometry);
+  auto snapshots_for = [&](double flow_throughs) {
+    return std::max<long>(1, std::lround(flow_throughs * tau / dt));
+  };
+  const long cap = snapshots_for(goal.active() ? p.max_averaging : p.averaging);
+  const bool chunked = goal.active() || p.cpu_budget.has_value();
+  // Chunks end at whole snapshots nearest to 1, 1.5, 2, ... flow-through
+  // times (counted from the start, so rounding does not accumulate), the
+  // last at the cap.
+  double boundary = chunked ? (goal.active() ? kFirstCheckFlowThroughs : kCheckEveryFlowThroughs)
+                            : std::numeric_limits<double>::infinity();
+  auto chunk_end = [&](long done) {
+    return std::clamp(std::isfinite(boundary) ? snapshots_for(boundary) : cap, done + 1, cap);
+  };
+  long chunk = chunk_end(0);
+
+  AveragingOutcome out;
+  pool.average(0);  // the warm-up, so that the first chunk's cost is the averaging's
+  double mark = cpu.seconds();
+  while (true) {
+    pool.average(chunk);
+    out.snapshots += chunk;
+    if (anyone(group, scene::interrupted())) {
+      out.stopped_by = "interrupted";
+      break;
+    }
+    if (goal.active()) {
+      Combined c;
+      const FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
+      const PrecisionMeasure previous = out.last;
+      out.last = goal.measure(r.fields);
+      out.checks.push_back(
+          {{"flow_throughs", static_cast<double>(out.snapshots) * dt / tau},
+           {"half_width", std::isfinite(out.last.half_width) ? nlohmann::json(out.last.half_width)
+                                                             : nlohmann::json(nullptr)},
+           {"quantity", out.last.quantity},
+           {"cpu_seconds", cpu.seconds()},
+           {"details", out.last.details}});
+      if (anyone(group, met(goal, previous, out.last))) {
+        out.stopped_by = "precision";
+        break;
+      }
+    }
+    if (out.snapshots >= cap) {
+      out.stopped_by = "averaging";
+      break;
+    }
+    boundary += kCheckEveryFlowThroughs;
+    const long next = chunk_end(out.snapshots) - out.snapshots;
+    const double now = cpu.seconds();
+    // The next chunk at this chunk's rate (its check included).
+    const double next_cost = (now - mark) * static_cast<double>(next) / static_cast<double>(chunk);
+    mark = now;
+    if (anyone(group, p.cpu_budget && now + next_cost > *p.cpu_budget)) {
+      out.stopped_by = "budget";
+      break;
+    }
+    chunk = next;
+  }
+  return out;
+}
+
+nlohmann::json precision_summary(const PrecisionGoal& goal, const AveragingOutcome& a) {
+  if (!goal.active()) return nullptr;
+  auto num = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  return {{"target_half_width", goal.target},
+          {"target_source", goal.target_source},
+          {"half_width", num(a.last.half_width)},
+          {"quantity", a.last.quantity},
+          {"checks", a.checks}};
+}
+
+}  // namespace
+
+FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const ReplicaGroup& group,
+                          const PrecisionGoal& goal) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const scene::CpuStopwatch cpu;
   const FlowSetup f = make_flow_setup(s);
   const scene::GranularParams& p = s.granular;
   const scene::Lattice geometry = flow_lattice(f, p.lattice_nx, p.lattice_ny);
   const Layout l = layout_for(p, geometry);
   if (!o.out_dir.empty()) scene::make_dirs(o.out_dir);
   if (p.snapshots && !o.out_dir.empty()) scene::make_dirs(o.out_dir + "/snapshots");
+  if (!goal.active() && (p.target_half_width || p.target_from_mesh) && group.rank == 0)
+    scene::log_line(
+        "granular: granular.target_half_width is judged by the pipeline (it needs shockfit); "
+        "this run averages granular.averaging");
 
-  std::vector<double> all(l.stride * static_cast<std::size_t>(l.replicas), 0.0);
-  const int nthreads =
-      run_replicas(s, f, geometry, o, group, l, replicas_of(group, l.replicas), all);
-  if (group.sum && group.size > 1) group.sum(all);
+  ReplicaPool pool(s, f, geometry, o, group, l, goal.active() ? p.max_averaging : p.averaging);
+  const AveragingOutcome a = average(pool, p, f, geometry, l, group, goal, cpu);
+  pool.finish();
 
-  const Combined c = combine(all, l, p.seed);
+  Combined c;
+  FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
   if (c.blocks.empty())
     throw scene::RunError(
         c.interrupted ? "interrupted during warm-up: no fields averaged yet, nothing written"
                       : "no snapshots were averaged");
-  FlowResult r;
-  r.fields = make_fields(f, geometry, c.blocks);
   const double wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  r.summary = flow_summary(s, f, geometry, c, wall_seconds, group.size, nthreads);
+  r.summary = flow_summary(s, f, geometry, c, wall_seconds, group.size, pool.threads());
+  const double averaged = static_cast<double>(a.snapshots) * snapshot_interval(f, geometry);
+  r.summary["averaging_time"] = averaged;
+  r.summary["averaging_flow_throughs"] = averaged / f.flow_through_time;
+  r.summary["stopped_by"] = a.stopped_by;
+  r.summary["cpu_budget"] = p.cpu_budget ? nlohmann::json(*p.cpu_budget) : nlohmann::json(nullptr);
+  r.summary["precision"] = precision_summary(goal, a);
+  r.summary["cpu_seconds"] = cpu.seconds();
   if (group.rank == 0 && !o.out_dir.empty()) {
     scene::write_vti(r.fields, o.out_dir + "/fields.vti");
     scene::write_json_atomic(o.out_dir + "/summary.json", r.summary);

@@ -38,7 +38,15 @@ struct GranularParams {
   int lattice_nx = 200;
   int lattice_ny = 200;
   std::optional<double> warmup;        // flow-through times; unset: detect steady state
-  double averaging = 4.0;              // flow-through times averaged
+  double averaging = 4.0;              // flow-through times averaged (no precision target)
+  // Precision on demand (docs/granular_flow.md): average until the shock's
+  // 95% position half-width (body lengths) is at most the target, the CPU
+  // budget is spent, or max_averaging flow-through times are averaged. The
+  // pipeline judges the half-width (it runs shockfit); unset: `averaging`.
+  std::optional<double> target_half_width;  // body lengths
+  bool target_from_mesh = false;  // `target_half_width: mesh`: k h_min of the finest clustered grid
+  std::optional<double> cpu_budget;    // CPU seconds of the granular stage
+  double max_averaging = 16.0;         // flow-through times, with a target
   int replicas = 2;                    // independent seeds (seed, seed+1, ...)
   bool snapshots = false;              // write particle snapshots
 };

@@ -16,7 +16,7 @@ namespace granular {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '3'};
+constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '4'};
 
 template <class T>
 void put(std::ostream& o, const T& v) {
@@ -53,6 +53,7 @@ void put_config(std::ostream& o, const EngineConfig& c) {
   put(o, c.gravity);
   put(o, c.tc);
   put(o, c.min_cell);
+  put(o, c.grid_speed);
 }
 
 EngineConfig get_config(std::istream& in) {
@@ -66,6 +67,7 @@ EngineConfig get_config(std::istream& in) {
   get(in, c.gravity);
   get(in, c.tc);
   get(in, c.min_cell);
+  get(in, c.grid_speed);
   return c;
 }
 

@@ -91,11 +91,33 @@ void Engine::Impl::advance(Particle& q) const {
 }
 
 int Engine::Impl::cell_of(double x, double y) const {
-  int cx = static_cast<int>(std::floor((x - cfg.xmin) / cw));
   int cy = static_cast<int>(std::floor((y - cfg.ymin) / ch));
-  cx = std::clamp(cx, 0, ncx - 1);
   cy = std::clamp(cy, 0, ncy - 1);
+  if (drifting) {
+    const auto k = static_cast<std::int64_t>(std::floor((x - cfg.xmin - drift * now) / cw));
+    const std::int64_t m = k % ncx;
+    return pack_cell(static_cast<int>(m < 0 ? m + ncx : m), cy);
+  }
+  int cx = static_cast<int>(std::floor((x - cfg.xmin) / cw));
+  cx = std::clamp(cx, 0, ncx - 1);
   return pack_cell(cx, cy);
+}
+
+std::size_t Engine::Impl::wall_cell(double x, double y) const {
+  const int cx = std::clamp(static_cast<int>(std::floor((x - cfg.xmin) / cw)), 0, wnx - 1);
+  const int cy = std::clamp(static_cast<int>(std::floor((y - cfg.ymin) / ch)), 0, ncy - 1);
+  return static_cast<std::size_t>(cy) * static_cast<std::size_t>(wnx) + static_cast<std::size_t>(cx);
+}
+
+// The column whose number modulo ncx is cx, nearest to the point xi: the
+// stored column may differ from floor(xi / cw) by round-off at a face.
+double Engine::Impl::column_of(double xi, int cx) const {
+  const double k0 = std::floor(xi / cw);
+  const auto m0 = static_cast<std::int64_t>(k0) % ncx;
+  std::int64_t d = cx - (m0 < 0 ? m0 + ncx : m0);
+  if (2 * d > ncx) d -= ncx;
+  else if (2 * d < -ncx) d += ncx;
+  return k0 + static_cast<double>(d);
 }
 
 void Engine::Impl::cell_insert(std::int32_t i, int c) {
@@ -249,6 +271,10 @@ void Engine::Impl::rebuild_calendar() {
 
 // Next crossing of a face of the particle's cell (state at `now`).
 void Engine::Impl::predict_cell(std::int32_t i) {
+  if (drifting) {
+    predict_cell_drifting(i);
+    return;
+  }
   const Particle& q = p[i];
   detail::Slot& si = s[i];
   const int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
@@ -269,8 +295,36 @@ void Engine::Impl::predict_cell(std::int32_t i) {
   si.cell_dir = dir;
 }
 
+// Drifting grid: the column's faces move at `drift`, so the gaps close at
+// the disk's speed relative to the grid; the rectangle's x faces (fixed)
+// are events of their own.
+void Engine::Impl::predict_cell_drifting(std::int32_t i) {
+  const Particle& q = p[i];
+  detail::Slot& si = s[i];
+  const int cy = cell_y(q.cell);
+  const double xi = q.x - cfg.xmin - drift * now;
+  const double k = column_of(xi, cell_x(q.cell));
+  const double xlo = k * cw, xhi = (k + 1.0) * cw;
+  const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
+  const Vec2 g = cfg.gravity;
+  const double t[6] = {
+      detail::first_contact(xi - xlo, q.vx - drift, 0.5 * g.x),
+      detail::first_contact(xhi - xi, drift - q.vx, -0.5 * g.x),
+      detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y),
+      detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y),
+      detail::first_contact(q.x - cfg.xmin, q.vx, 0.5 * g.x),
+      detail::first_contact(cfg.xmax - q.x, -q.vx, -0.5 * g.x),
+  };
+  double best = t[0];
+  std::uint8_t dir = 0;
+  for (std::uint8_t d = 1; d < 6; ++d)
+    if (t[d] < best) { best = t[d]; dir = d; }
+  si.cell_t = now + best;
+  si.cell_dir = dir;
+}
+
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
-  if (!wrap_axis(cx, ncx, periodic_x, lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy)) return false;
+  if (!wrap_axis(cx, ncx, wrap_x, wrap_lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy)) return false;
   cell = pack_cell(cx, cy);
   return true;
 }
@@ -284,7 +338,7 @@ void Engine::Impl::block_of(int cell, Block& b) const {
   const int cx = cell_x(cell), cy = cell_y(cell);
   for (int d = 0; d < 3; ++d) {
     int x = cx + d - 1, y = cy + d - 1;
-    okx[d] = wrap_axis(x, ncx, periodic_x, lx, sx[d]);
+    okx[d] = wrap_axis(x, ncx, wrap_x, wrap_lx, sx[d]);
     oky[d] = wrap_axis(y, ncy, periodic_y, ly, sy[d]);
     col[d] = head_col(x);
     row[d] = head_row(y);
@@ -340,13 +394,38 @@ void Engine::Impl::scan_list(std::int32_t i, std::int32_t first, double shx, dou
   }
 }
 
-void Engine::Impl::scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx,
+// Walls and vertices a disk may touch: those of its cell (fixed grid), or
+// (drifting grid) those of the fixed grid's cell it is in, which lists all
+// it could reach before travelling that cell's clearance; the look-up is
+// then repeated at that horizon (WALL_RECHECK) unless an earlier event
+// comes first. Call after predict_cell(): the horizon joins cell_t.
+void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx, double vy) {
+  if (!drifting) {
+    scan_walls_for(i, linear_cell(c), rx, ry, vx, vy);
+    return;
+  }
+  const std::size_t lc = wall_cell(rx, ry);
+  const double clear = wall_clear[lc];
+  if (clear != kNever) {
+    // The path travelled in dt is at most |v| dt + |g| dt^2 / 2.
+    const double speed = std::sqrt(vx * vx + vy * vy);
+    const double accel = std::sqrt(cfg.gravity.x * cfg.gravity.x + cfg.gravity.y * cfg.gravity.y);
+    const double dt = 2.0 * clear / (speed + std::sqrt(speed * speed + 2.0 * accel * clear));
+    detail::Slot& si = s[i];
+    if (now + dt < si.cell_t) {
+      si.cell_t = now + dt;
+      si.cell_dir = detail::WALL_RECHECK;
+    }
+  }
+  scan_walls_for(i, lc, rx, ry, vx, vy);
+}
+
+void Engine::Impl::scan_walls_for(std::int32_t i, std::size_t lc, double rx, double ry, double vx,
                                   double vy) {
   detail::Slot& si = s[i];
   const double rad = radius[p[i].species];
   const Vec2 g = cfg.gravity;
   if (!wall_start.empty()) {
-    const std::size_t lc = linear_cell(c);
     for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
       const std::int32_t w = wall_list[k];
       const detail::WallGeom& wg = walls[w];
@@ -369,7 +448,6 @@ void Engine::Impl::scan_walls_for(std::int32_t i, int c, double rx, double ry, d
   }
   if (!vertex_start.empty()) {
     const bool accel = g.x != 0.0 || g.y != 0.0;
-    const std::size_t lc = linear_cell(c);
     for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k) {
       const std::int32_t v = vertex_list[k];
       const Vec2 vp = cfg.vertices[v].p;
@@ -406,7 +484,7 @@ void Engine::Impl::predict(std::int32_t i) {
     if (first[k] >= 0) detail::prefetch(&p[first[k]]);
   }
   for (int k = 0; k < b.n; ++k) scan_list(i, first[k], b.shx[k], b.shy[k], q.x, q.y, q.vx, q.vy, rad);
-  scan_walls_for(i, p[i].cell, q.x, q.y, q.vx, q.vy);
+  scan_surfaces(i, p[i].cell, q.x, q.y, q.vx, q.vy);
 }
 
 void Engine::Impl::process(std::int32_t i) {
@@ -420,6 +498,7 @@ void Engine::Impl::process(std::int32_t i) {
       const std::int32_t j = si.partner;
       if (!p[j].alive || p[j].count != si.pcount) {
         // The partner changed course since the prediction: predict again.
+        ++repredictions;
         predict(i);
         schedule(i);
         return;
@@ -454,13 +533,19 @@ void Engine::Impl::process(std::int32_t i) {
 }
 
 void Engine::Impl::cross_cell(std::int32_t i) {
+  ++crossings;
   Particle& q = p[i];
   advance(q);
   detail::Slot& si = s[i];
-  int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
   const std::uint8_t dir = si.cell_dir;
+  if (dir >= detail::EXIT_LEFT) {
+    leave_or_recheck(i);
+    return;
+  }
+  int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
   int ncx2 = cx + (dir == 1) - (dir == 0);
   int ncy2 = cy + (dir == 3) - (dir == 2);
+  if (drifting) ncx2 = ncx2 < 0 ? ncx - 1 : ncx2 >= ncx ? 0 : ncx2;  // columns numbered modulo ncx
   if (ncx2 < 0 || ncx2 >= ncx || ncy2 < 0 || ncy2 >= ncy) {
     const Face face = dir == 0 ? cfg.left : dir == 1 ? cfg.right : dir == 2 ? cfg.bottom : cfg.top;
     if (face == Face::open) {
@@ -502,8 +587,38 @@ void Engine::Impl::cross_cell(std::int32_t i) {
       const int fy = ncy2 + (dir == 3 ? 1 : -1);
       for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, ncx2 + dx, fy, q.x, q.y, q.vx, q.vy, rad);
     }
-    scan_walls_for(i, c, q.x, q.y, q.vx, q.vy);
+    scan_surfaces(i, c, q.x, q.y, q.vx, q.vy);
   }
+  schedule(i);
+}
+
+// Drifting grid: a disk reaching an x face of the rectangle (open: it
+// leaves; closed: a wall was tunnelled, recovered as at a cell face), or
+// its wall look-up horizon (the cell is unchanged: the stored collision
+// still holds, only the walls are looked up again).
+void Engine::Impl::leave_or_recheck(std::int32_t i) {
+  Particle& q = p[i];
+  detail::Slot& si = s[i];
+  if (si.cell_dir != detail::WALL_RECHECK) {
+    const Face face = si.cell_dir == detail::EXIT_LEFT ? cfg.left : cfg.right;
+    if (face == Face::open) {
+      remove(i);
+      return;
+    }
+    ++st.recoveries;
+    q.vx = -q.vx;
+    ++q.count;
+    predict(i);
+    schedule(i);
+    return;
+  }
+  ++rechecks;
+  --crossings;
+  predict_cell(i);
+  const bool stale = si.type == EventType::disk &&
+                     (!p[si.partner].alive || p[si.partner].count != si.pcount);
+  if (stale) predict(i);
+  else scan_surfaces(i, q.cell, q.x, q.y, q.vx, q.vy);
   schedule(i);
 }
 
@@ -738,6 +853,12 @@ Stats Engine::stats_light() const {
   out.time = impl_->now;
   return out;
 }
+
+EventCounts Engine::event_counts() const {
+  return {impl_->events, impl_->crossings, impl_->repredictions, impl_->rechecks};
+}
+
+Vec2 Engine::cell_size() const { return {impl_->cw, impl_->ch}; }
 
 const EngineConfig& Engine::config() const { return impl_->cfg; }
 std::span<const Particle> Engine::particles() const { return {impl_->p.data(), impl_->p.size()}; }

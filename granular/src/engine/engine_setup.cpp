@@ -20,6 +20,14 @@ constexpr double kAddOverlapTolerance = 1e-12;
 // Cells register walls and vertices this much beyond the largest radius, so
 // that round-off in the cell geometry cannot drop a contact.
 constexpr double kRegistrationSlack = 1e-9;
+// Drifting grid: columns beyond those the rectangle spans (it meets at
+// most wnx + 1 of them at a time), so that the columns on its two sides,
+// numbered modulo ncx, are never adjacent.
+constexpr int kSpareColumns = 3;
+// Drifting grid: a disk near a wall or vertex looks up the fixed grid's
+// items again after travelling this far (diameters). Larger: fewer
+// look-ups, longer lists.
+constexpr double kWallLookAhead = 8.0;
 
 double point_rect_distance(Vec2 q, double x0, double y0, double x1, double y1) {
   const double dx = std::max({x0 - q.x, 0.0, q.x - x1});
@@ -110,9 +118,14 @@ void Engine::Impl::init(EngineConfig c) {
   }
   lx = cfg.xmax - cfg.xmin;
   ly = cfg.ymax - cfg.ymin;
+  drifting = cfg.grid_speed != 0.0;
+  drift = cfg.grid_speed;
+  if (!std::isfinite(drift)) bad("grid_speed must be finite");
+  if (drifting && periodic_x) bad("a drifting cell grid (grid_speed) needs non-periodic x faces");
   const double cell = std::max(max_diameter, cfg.min_cell);
   // Checked as doubles, before the counts are cast to int.
-  const double cells_x = std::floor(lx / cell), cells_y = std::floor(ly / cell);
+  const double cells_x = std::floor(lx / cell) + (drifting ? kSpareColumns : 0),
+               cells_y = std::floor(ly / cell);
   if (std::max(cells_x, cells_y) > kMaxCellsPerSide) {
     char count[32];
     std::snprintf(count, sizeof count, "%.0f", std::max(cells_x, cells_y));
@@ -124,15 +137,15 @@ void Engine::Impl::init(EngineConfig c) {
   ncy = std::max(1, static_cast<int>(cells_y));
   if ((periodic_x && ncx < 3) || (periodic_y && ncy < 3))
     bad("a periodic side must be at least 3 largest diameters long");
-  cw = lx / ncx;
+  wnx = drifting ? ncx - kSpareColumns : ncx;
+  cw = lx / wnx;
   ch = ly / ncy;
+  wrap_x = periodic_x || drifting;
+  wrap_lx = periodic_x ? lx : 0.0;
   tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;
   const std::uint32_t tiles_y = (static_cast<std::uint32_t>(ncy) + kTile - 1) / kTile;
   head.assign(static_cast<std::size_t>(tiles_x) * tiles_y * kTile * kTile, -1);
 
-  // Walls and vertices, registered in every cell a disk centre in which
-  // could touch them.
-  const double reach = 0.5 * max_diameter + kRegistrationSlack;
   for (const Wall& w : cfg.walls) {
     const Vec2 d = w.b - w.a;
     const double len = norm(d);
@@ -143,49 +156,65 @@ void Engine::Impl::init(EngineConfig c) {
   }
   for (const Vertex& v : cfg.vertices)
     if (v.restitution > 1.0) bad("vertex restitution must lie in [0, 1]");
-  auto register_all = [&](auto&& dist, std::size_t count, std::vector<std::int32_t>& start,
-                          std::vector<std::int32_t>& list) {
-    if (count == 0) return;
-    std::vector<std::vector<std::int32_t>> per(head.size());
-    for (std::size_t k = 0; k < count; ++k) {
-      // Bounding box of the item expanded by `reach`, clipped to the grid.
-      for (int cy = 0; cy < ncy; ++cy) {
-        const double y0 = cfg.ymin + cy * ch, y1 = cfg.ymin + (cy + 1) * ch;
-        if (!dist.y_ok(k, y0, y1, reach)) continue;
-        for (int cx = 0; cx < ncx; ++cx) {
-          const double x0 = cfg.xmin + cx * cw, x1 = cfg.xmin + (cx + 1) * cw;
-          if (dist(k, x0, y0, x1, y1) <= reach)
-            per[static_cast<std::size_t>(cy * ncx + cx)].push_back(static_cast<std::int32_t>(k));
-        }
-      }
+  register_surfaces();
+}
+
+// Walls and vertices, registered in every cell of the fixed grid a disk
+// centre in which could touch them (fixed cell grid), or could touch them
+// before travelling the cell's wall_clear (drifting grid).
+void Engine::Impl::register_surfaces() {
+  const std::size_t ncell = static_cast<std::size_t>(wnx) * static_cast<std::size_t>(ncy);
+  const double radius_max = 0.5 * max_diameter;
+  const auto cell_rect = [&](std::size_t c, double& x0, double& y0, double& x1, double& y1) {
+    const auto cx = static_cast<double>(c % static_cast<std::size_t>(wnx));
+    const auto cy = static_cast<double>(c / static_cast<std::size_t>(wnx));
+    x0 = cfg.xmin + cx * cw;
+    x1 = cfg.xmin + (cx + 1) * cw;
+    y0 = cfg.ymin + cy * ch;
+    y1 = cfg.ymin + (cy + 1) * ch;
+  };
+  const auto wall_distance = [&](std::size_t k, double x0, double y0, double x1, double y1) {
+    return segment_rect_distance(cfg.walls[k].a, cfg.walls[k].b, x0, y0, x1, y1);
+  };
+  const auto vertex_distance = [&](std::size_t k, double x0, double y0, double x1, double y1) {
+    return point_rect_distance(cfg.vertices[k].p, x0, y0, x1, y1);
+  };
+  // Reach from each cell: the largest radius (fixed grid), plus the
+  // distance a disk may travel before it must look again (drifting grid):
+  // at least kWallLookAhead, and in cells far from every item the whole
+  // clearance, so that a disk in the open stream rarely looks at all.
+  std::vector<double> reach(ncell, radius_max + kRegistrationSlack);
+  if (drifting) {
+    wall_clear.assign(ncell, detail::kNever);
+    for (std::size_t c = 0; c < ncell; ++c) {
+      double x0, y0, x1, y1;
+      cell_rect(c, x0, y0, x1, y1);
+      double nearest = detail::kNever;
+      for (std::size_t k = 0; k < cfg.walls.size(); ++k) nearest = std::min(nearest, wall_distance(k, x0, y0, x1, y1));
+      for (std::size_t k = 0; k < cfg.vertices.size(); ++k)
+        nearest = std::min(nearest, vertex_distance(k, x0, y0, x1, y1));
+      // The nearest item itself lies beyond the reach unless within kWallLookAhead.
+      wall_clear[c] = std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
+      reach[c] = radius_max + wall_clear[c] + kRegistrationSlack;
     }
-    start.assign(head.size() + 1, 0);
-    for (std::size_t c2 = 0; c2 < head.size(); ++c2)
-      start[c2 + 1] = start[c2] + static_cast<std::int32_t>(per[c2].size());
+  }
+  const auto register_all = [&](auto&& dist, std::size_t count, std::vector<std::int32_t>& start,
+                                std::vector<std::int32_t>& list) {
+    if (count == 0) return;
+    std::vector<std::vector<std::int32_t>> per(ncell);
+    for (std::size_t c = 0; c < ncell; ++c) {
+      double x0, y0, x1, y1;
+      cell_rect(c, x0, y0, x1, y1);
+      for (std::size_t k = 0; k < count; ++k)
+        if (dist(k, x0, y0, x1, y1) <= reach[c]) per[c].push_back(static_cast<std::int32_t>(k));
+    }
+    start.assign(ncell + 1, 0);
+    for (std::size_t c = 0; c < ncell; ++c) start[c + 1] = start[c] + static_cast<std::int32_t>(per[c].size());
     list.clear();
     for (const auto& v : per) list.insert(list.end(), v.begin(), v.end());
   };
-  struct WallDist {
-    const std::vector<Wall>* w;
-    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
-      return segment_rect_distance((*w)[k].a, (*w)[k].b, x0, y0, x1, y1);
-    }
-    bool y_ok(std::size_t k, double y0, double y1, double r) const {
-      const double lo = std::min((*w)[k].a.y, (*w)[k].b.y) - r, hi = std::max((*w)[k].a.y, (*w)[k].b.y) + r;
-      return y1 >= lo && y0 <= hi;
-    }
-  };
-  struct VertexDist {
-    const std::vector<Vertex>* v;
-    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
-      return point_rect_distance((*v)[k].p, x0, y0, x1, y1);
-    }
-    bool y_ok(std::size_t k, double y0, double y1, double r) const {
-      return y1 >= (*v)[k].p.y - r && y0 <= (*v)[k].p.y + r;
-    }
-  };
-  register_all(WallDist{&cfg.walls}, cfg.walls.size(), wall_start, wall_list);
-  register_all(VertexDist{&cfg.vertices}, cfg.vertices.size(), vertex_start, vertex_list);
+  register_all(wall_distance, cfg.walls.size(), wall_start, wall_list);
+  register_all(vertex_distance, cfg.vertices.size(), vertex_start, vertex_list);
 }
 
 // Does a disk of `species` at r overlap (deeper than tol) any disk, wall or
@@ -208,7 +237,7 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
       if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
     }
   }
-  const std::size_t lc = linear_cell(c);
+  const std::size_t lc = drifting ? wall_cell(r.x, r.y) : linear_cell(c);
   if (!wall_start.empty())
     for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
       const Wall& w = cfg.walls[wall_list[k]];

@@ -153,6 +153,8 @@ EngineConfig engine_config(const FlowConfig& c, std::vector<Segment>& body) {
   e.restitution = {c.restitution};
   e.gravity = c.gravity;
   e.tc = c.tc;
+  e.min_cell = c.cell;
+  if (c.comoving_cells) e.grid_speed = c.inflow_speed;
   if (c.symmetric) e.walls.push_back({{c.xmin, c.ymin}, {c.xmax, c.ymin}, 1.0});  // mirror
   for (const auto& chain : c.body_chains) {
     if (chain.size() < 2) throw scene::InputError("flow: a body chain needs two points");

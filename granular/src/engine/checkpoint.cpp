@@ -79,6 +79,7 @@ void Engine::save(std::ostream& o) const {
   put_config(o, m.cfg);
   put_vec(o, m.p);
   put_vec(o, m.s);
+  put_vec(o, m.timer_t);
   put_vec(o, m.head);
   put_vec(o, m.free_slots);
   put(o, m.started);
@@ -107,9 +108,11 @@ Engine Engine::load(std::istream& in) {
   Impl& m = *e.impl_;
   get_vec(in, m.p);
   get_vec(in, m.s);
+  get_vec(in, m.timer_t);
   decltype(m.head) head;
   get_vec(in, head);
-  if (head.size() != m.head.size() || m.s.size() != m.p.size())
+  if (head.size() != m.head.size() || m.s.size() != m.p.size() ||
+      m.timer_t.size() != (m.drifting ? m.p.size() : 0))
     throw scene::InputError("checkpoint: inconsistent grid");
   m.head = std::move(head);
   get_vec(in, m.free_slots);

@@ -296,8 +296,8 @@ void Engine::Impl::predict_cell(std::int32_t i) {
 }
 
 // Drifting grid: the column's faces move at `drift`, so the gaps close at
-// the disk's speed relative to the grid; the rectangle's x faces (fixed)
-// are events of their own.
+// the disk's speed relative to the grid. (The rectangle's x faces, fixed,
+// are in the slot's timer: scan_surfaces().)
 void Engine::Impl::predict_cell_drifting(std::int32_t i) {
   const Particle& q = p[i];
   detail::Slot& si = s[i];
@@ -307,20 +307,26 @@ void Engine::Impl::predict_cell_drifting(std::int32_t i) {
   const double xlo = k * cw, xhi = (k + 1.0) * cw;
   const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
   const Vec2 g = cfg.gravity;
-  const double t[6] = {
-      detail::first_contact(xi - xlo, q.vx - drift, 0.5 * g.x),
-      detail::first_contact(xhi - xi, drift - q.vx, -0.5 * g.x),
-      detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y),
-      detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y),
-      detail::first_contact(q.x - cfg.xmin, q.vx, 0.5 * g.x),
-      detail::first_contact(cfg.xmax - q.x, -q.vx, -0.5 * g.x),
-  };
-  double best = t[0];
-  std::uint8_t dir = 0;
-  for (std::uint8_t d = 1; d < 6; ++d)
-    if (t[d] < best) { best = t[d]; dir = d; }
+  const double t0 = detail::first_contact(xi - xlo, q.vx - drift, 0.5 * g.x);
+  const double t1 = detail::first_contact(xhi - xi, drift - q.vx, -0.5 * g.x);
+  const double t2 = detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y);
+  const double t3 = detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y);
+  double best = t0;
+  std::uint8_t dir = detail::FACE_LEFT;
+  if (t1 < best) { best = t1; dir = detail::FACE_RIGHT; }
+  if (t2 < best) { best = t2; dir = detail::FACE_BOTTOM; }
+  if (t3 < best) { best = t3; dir = detail::FACE_TOP; }
   si.cell_t = now + best;
   si.cell_dir = dir;
+}
+
+// Drifting grid: the slot's timer joins its next cell event.
+void Engine::Impl::join_timer(std::int32_t i) {
+  detail::Slot& si = s[i];
+  if (timer_t[i] < si.cell_t) {
+    si.cell_t = timer_t[i];
+    si.cell_dir = si.timer_dir;
+  }
 }
 
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
@@ -397,27 +403,39 @@ void Engine::Impl::scan_list(std::int32_t i, std::int32_t first, double shx, dou
 // Walls and vertices a disk may touch: those of its cell (fixed grid), or
 // (drifting grid) those of the fixed grid's cell it is in, which lists all
 // it could reach before travelling that cell's clearance; the look-up is
-// then repeated at that horizon (WALL_RECHECK) unless an earlier event
-// comes first. Call after predict_cell(): the horizon joins cell_t.
+// then repeated at that horizon (WALL_RECHECK) unless the disk reaches an
+// x face of the rectangle first. The drifting grid keeps both in the
+// slot's timer, which joins cell_t: call after predict_cell().
 void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx, double vy) {
   if (!drifting) {
     scan_walls_for(i, linear_cell(c), rx, ry, vx, vy);
     return;
   }
+  const Vec2 g = cfg.gravity;
+  const double t_left = detail::first_contact(rx - cfg.xmin, vx, 0.5 * g.x);
+  const double t_right = detail::first_contact(cfg.xmax - rx, -vx, -0.5 * g.x);
+  double timer = t_left;
+  std::uint8_t dir = detail::EXIT_LEFT;
+  if (t_right < timer) { timer = t_right; dir = detail::EXIT_RIGHT; }
   const std::size_t lc = wall_cell(rx, ry);
   const double clear = wall_clear[lc];
   if (clear != kNever) {
     // The path travelled in dt is at most |v| dt + |g| dt^2 / 2.
     const double speed = std::sqrt(vx * vx + vy * vy);
-    const double accel = std::sqrt(cfg.gravity.x * cfg.gravity.x + cfg.gravity.y * cfg.gravity.y);
+    const double accel = std::sqrt(g.x * g.x + g.y * g.y);
     const double dt = 2.0 * clear / (speed + std::sqrt(speed * speed + 2.0 * accel * clear));
-    detail::Slot& si = s[i];
-    if (now + dt < si.cell_t) {
-      si.cell_t = now + dt;
-      si.cell_dir = detail::WALL_RECHECK;
-    }
+    if (dt < timer) { timer = dt; dir = detail::WALL_RECHECK; }
   }
+  detail::Slot& si = s[i];
+  timer_t[i] = now + timer;
+  si.timer_dir = dir;
+  // Beyond the timer the walls are looked up again: the horizon of the
+  // look-up's predictions (the quartic of a vertex under gravity).
+  const double cell_t = si.cell_t;
+  si.cell_t = timer_t[i];
   scan_walls_for(i, lc, rx, ry, vx, vy);
+  si.cell_t = cell_t;
+  join_timer(i);
 }
 
 void Engine::Impl::scan_walls_for(std::int32_t i, std::size_t lc, double rx, double ry, double vx,
@@ -572,6 +590,7 @@ void Engine::Impl::cross_cell(std::int32_t i) {
   cell_remove(i, p[i].cell);
   cell_insert(i, c);
   predict_cell(i);
+  if (drifting) join_timer(i);  // the path, hence its walls and timer, is unchanged
   const bool stale = si.type == EventType::disk &&
                      (!p[si.partner].alive || p[si.partner].count != si.pcount);
   if (stale) {
@@ -587,7 +606,7 @@ void Engine::Impl::cross_cell(std::int32_t i) {
       const int fy = ncy2 + (dir == 3 ? 1 : -1);
       for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, ncx2 + dx, fy, q.x, q.y, q.vx, q.vy, rad);
     }
-    scan_surfaces(i, c, q.x, q.y, q.vx, q.vy);
+    if (!drifting) scan_surfaces(i, c, q.x, q.y, q.vx, q.vy);
   }
   schedule(i);
 }
@@ -739,6 +758,11 @@ bool Engine::Impl::reorder() {
   // would double the peak memory of a large system.
   for (std::size_t k = 0; k < n; ++k)
     if (s[k].type == EventType::disk) s[k].partner = new_index[static_cast<std::size_t>(s[k].partner)];
+  if (drifting) {  // 8 bytes a slot: a copy costs little
+    std::vector<double> moved(n);
+    for (std::size_t k = 0; k < n; ++k) moved[static_cast<std::size_t>(new_index[k])] = timer_t[k];
+    timer_t.swap(moved);
+  }
   for (std::size_t start = 0; start < n; ++start) {
     // new_index[k] < 0 marks a slot already placed.
     if (new_index[start] < 0 || static_cast<std::size_t>(new_index[start]) == start) continue;
@@ -782,6 +806,7 @@ void Engine::Impl::build_all() {
 void Engine::reserve(std::size_t n) {
   impl_->p.reserve(n);
   impl_->s.reserve(n);
+  if (impl_->drifting) impl_->timer_t.reserve(n);
 }
 
 void Engine::start() {

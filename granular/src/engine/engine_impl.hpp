@@ -28,6 +28,7 @@ struct Slot {
   std::uint32_t pcount;   // partner's collision counter when predicted
   EventType type;
   std::uint8_t cell_dir;  // CellEvent
+  std::uint8_t timer_dir; // drifting grid: CellEvent of Impl::timer_t (EXIT_* or WALL_RECHECK)
   std::uint32_t qver;     // calendar version: only the entry carrying it is live
 
   double key() const { return coll_t < cell_t ? coll_t : cell_t; }  // next event time
@@ -107,6 +108,12 @@ struct Engine::Impl {
   std::vector<std::int32_t> wall_start, wall_list;      // CSR cell -> walls
   std::vector<std::int32_t> vertex_start, vertex_list;  // CSR cell -> vertices
   std::vector<double> wall_clear;                       // drifting grid only
+  // Drifting grid, per slot: the earliest of the disk's arrival at an x
+  // face of the rectangle and its wall look-up horizon (Slot::timer_dir
+  // says which). Both hold along the disk's path, so a crossing of the
+  // drifting cells keeps them; only a new path (predict()) or the horizon
+  // itself recomputes them.
+  std::vector<double> timer_t;
   std::vector<detail::WallGeom> walls;
   // Particles.
   std::vector<Particle, detail::HugeAlloc<Particle>> p;
@@ -151,6 +158,7 @@ struct Engine::Impl {
   void predict_cell(std::int32_t i);
   void predict_cell_drifting(std::int32_t i);
   void scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx, double vy);
+  void join_timer(std::int32_t i);
   bool neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const;
   void scan_list(std::int32_t i, std::int32_t first, double shx, double shy, double rx, double ry,
                  double vx, double vy, double rad_i);

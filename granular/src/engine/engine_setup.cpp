@@ -260,13 +260,14 @@ std::int32_t Engine::Impl::add_slot(Vec2 r, Vec2 v, int species) {
     i = static_cast<std::int32_t>(p.size());
     p.push_back({});
     s.push_back({});
+    if (drifting) timer_t.push_back(detail::kNever);
   }
   p[i] = Particle{r.x, r.y, v.x, v.y, now, -detail::kNever, count, -1, 0,
                   static_cast<std::uint16_t>(species), 1};
   // The version carries over, so that calendar entries of the slot's
   // previous occupant stay stale.
   const std::uint32_t qver = s[i].qver + 1;
-  s[i] = detail::Slot{detail::kNever, detail::kNever, -1, 0, detail::EventType::none, 0, qver};
+  s[i] = detail::Slot{detail::kNever, detail::kNever, -1, 0, detail::EventType::none, 0, 0, qver};
   cell_insert(i, cell_of(r.x, r.y));
   integrate_energy();
   energy += 0.5 * mass[static_cast<std::size_t>(species)] * norm2(v);

@@ -104,20 +104,22 @@ int Engine::Impl::cell_of(double x, double y) const {
 }
 
 std::size_t Engine::Impl::wall_cell(double x, double y) const {
-  const int cx = std::clamp(static_cast<int>(std::floor((x - cfg.xmin) / cw)), 0, wnx - 1);
-  const int cy = std::clamp(static_cast<int>(std::floor((y - cfg.ymin) / ch)), 0, ncy - 1);
+  const int cx = std::clamp(static_cast<int>(std::floor((x - cfg.xmin) * inv_wcw)), 0, wnx - 1);
+  const int cy = std::clamp(static_cast<int>(std::floor((y - cfg.ymin) * inv_wch)), 0, wny - 1);
   return static_cast<std::size_t>(cy) * static_cast<std::size_t>(wnx) + static_cast<std::size_t>(cx);
 }
 
 // The column whose number modulo ncx is cx, nearest to the point xi: the
 // stored column may differ from floor(xi / cw) by round-off at a face.
+// (Double arithmetic throughout: an integer division per event costs more
+// than the rest; a remainder off by ncx from round-off is wrapped back.)
 double Engine::Impl::column_of(double xi, int cx) const {
-  const double k0 = std::floor(xi / cw);
-  const auto m0 = static_cast<std::int64_t>(k0) % ncx;
-  std::int64_t d = cx - (m0 < 0 ? m0 + ncx : m0);
-  if (2 * d > ncx) d -= ncx;
-  else if (2 * d < -ncx) d += ncx;
-  return k0 + static_cast<double>(d);
+  const double n = static_cast<double>(ncx);
+  const double k0 = std::floor(xi * inv_cw);
+  double d = static_cast<double>(cx) - (k0 - n * std::floor(k0 * inv_ncx));
+  if (2.0 * d > n) d -= n;
+  else if (2.0 * d < -n) d += n;
+  return k0 + d;
 }
 
 void Engine::Impl::cell_insert(std::int32_t i, int c) {
@@ -417,8 +419,14 @@ void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, do
   double timer = t_left;
   std::uint8_t dir = detail::EXIT_LEFT;
   if (t_right < timer) { timer = t_right; dir = detail::EXIT_RIGHT; }
+  if (surfaces.empty()) {  // nothing to look up: only the exits
+    timer_t[i] = now + timer;
+    s[i].timer_dir = dir;
+    join_timer(i);
+    return;
+  }
   const std::size_t lc = wall_cell(rx, ry);
-  const double clear = wall_clear[lc];
+  const double clear = static_cast<double>(surfaces[lc].clear);
   if (clear != kNever) {
     // The path travelled in dt is at most |v| dt + |g| dt^2 / 2.
     const double speed = std::sqrt(vx * vx + vy * vy);
@@ -443,8 +451,11 @@ void Engine::Impl::scan_walls_for(std::int32_t i, std::size_t lc, double rx, dou
   detail::Slot& si = s[i];
   const double rad = radius[p[i].species];
   const Vec2 g = cfg.gravity;
-  if (!wall_start.empty()) {
-    for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
+  if (surfaces.empty()) return;
+  const detail::SurfaceCell& here = surfaces[lc];
+  const detail::SurfaceCell& next = surfaces[lc + 1];
+  {
+    for (std::int32_t k = here.walls; k < next.walls; ++k) {
       const std::int32_t w = wall_list[k];
       const detail::WallGeom& wg = walls[w];
       const double ax = rx - wg.a.x, ay = ry - wg.a.y;
@@ -464,9 +475,9 @@ void Engine::Impl::scan_walls_for(std::int32_t i, std::size_t lc, double rx, dou
       si.partner = w;
     }
   }
-  if (!vertex_start.empty()) {
+  {
     const bool accel = g.x != 0.0 || g.y != 0.0;
-    for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k) {
+    for (std::int32_t k = here.vertices; k < next.vertices; ++k) {
       const std::int32_t v = vertex_list[k];
       const Vec2 vp = cfg.vertices[v].p;
       const double dt =

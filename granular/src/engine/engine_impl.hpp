@@ -35,6 +35,16 @@ struct Slot {
   bool crossing_first() const { return cell_t <= coll_t; }          // next event is a cell crossing
 };
 
+// The walls and vertices of a cell of the fixed look-up grid: the first of
+// each in Impl::wall_list / vertex_list (the next cell's first ends them),
+// and (drifting grid) how far a disk in the cell may travel before it must
+// look again, rounded down. One 16-byte record: a look-up reads one line.
+struct SurfaceCell {
+  std::int32_t walls = 0, vertices = 0;
+  float clear = 0.0f;
+  std::int32_t unused = 0;
+};
+
 struct WallGeom {
   Vec2 a, n, t;  // start, outward unit normal, unit tangent
   double length;
@@ -98,16 +108,18 @@ struct Engine::Impl {
   // x faces are then events of their own (EXIT_LEFT / EXIT_RIGHT).
   bool drifting = false;
   double drift = 0.0;
+  double inv_cw = 1.0, inv_ncx = 1.0;
   std::vector<std::int32_t, detail::HugeAlloc<std::int32_t>> head;  // tiled cell -> first slot
   // Walls and vertices by cell of the fixed grid (the cell grid itself when
-  // it does not drift; else a fixed grid of the same cell size, wnx columns
-  // by ncy rows), CSR. With a drifting grid a cell lists every item within
-  // the disk radius plus wall_clear[cell] of it, and a disk in the cell
-  // looks again (WALL_RECHECK) once it may have travelled wall_clear.
-  int wnx = 1;
-  std::vector<std::int32_t> wall_start, wall_list;      // CSR cell -> walls
-  std::vector<std::int32_t> vertex_start, vertex_list;  // CSR cell -> vertices
-  std::vector<double> wall_clear;                       // drifting grid only
+  // it does not drift; else a coarser fixed grid, wnx columns by wny
+  // rows): surfaces[cell] .. surfaces[cell + 1] (empty without walls
+  // and vertices). With a drifting grid a cell lists every item within the
+  // disk radius plus the cell's `clear` of it, and a disk in the cell looks
+  // again (WALL_RECHECK) once it may have travelled `clear`.
+  int wnx = 1, wny = 1;
+  double inv_wcw = 1.0, inv_wch = 1.0;
+  std::vector<detail::SurfaceCell> surfaces;
+  std::vector<std::int32_t> wall_list, vertex_list;
   // Drifting grid, per slot: the earliest of the disk's arrival at an x
   // face of the rectangle and its wall look-up horizon (Slot::timer_dir
   // says which). Both hold along the disk's path, so a crossing of the

@@ -28,6 +28,10 @@ constexpr int kSpareColumns = 3;
 // items again after travelling this far (diameters). Larger: fewer
 // look-ups, longer lists.
 constexpr double kWallLookAhead = 8.0;
+// Drifting grid: side of the fixed look-up grid's cells (diameters, at
+// least the cell side). Larger: a smaller table (fewer cache misses per
+// look-up: 16 bytes a cell), longer lists near the walls.
+constexpr double kSurfaceCell = 6.0;
 
 double point_rect_distance(Vec2 q, double x0, double y0, double x1, double y1) {
   const double dx = std::max({x0 - q.x, 0.0, q.x - x1});
@@ -137,9 +141,17 @@ void Engine::Impl::init(EngineConfig c) {
   ncy = std::max(1, static_cast<int>(cells_y));
   if ((periodic_x && ncx < 3) || (periodic_y && ncy < 3))
     bad("a periodic side must be at least 3 largest diameters long");
-  wnx = drifting ? ncx - kSpareColumns : ncx;
-  cw = lx / wnx;
+  const int columns = drifting ? ncx - kSpareColumns : ncx;  // spanning the rectangle
+  cw = lx / columns;
   ch = ly / ncy;
+  // The fixed look-up grid of walls and vertices: the cell grid itself, or
+  // for a drifting grid coarse cells whose records stay in cache.
+  wnx = drifting ? std::max(1, static_cast<int>(std::floor(lx / std::max(cell, kSurfaceCell)))) : ncx;
+  wny = drifting ? std::max(1, static_cast<int>(std::floor(ly / std::max(cell, kSurfaceCell)))) : ncy;
+  inv_wcw = wnx / lx;
+  inv_wch = wny / ly;
+  inv_cw = 1.0 / cw;
+  inv_ncx = 1.0 / ncx;
   wrap_x = periodic_x || drifting;
   wrap_lx = periodic_x ? lx : 0.0;
   tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;
@@ -163,15 +175,16 @@ void Engine::Impl::init(EngineConfig c) {
 // centre in which could touch them (fixed cell grid), or could touch them
 // before travelling the cell's wall_clear (drifting grid).
 void Engine::Impl::register_surfaces() {
-  const std::size_t ncell = static_cast<std::size_t>(wnx) * static_cast<std::size_t>(ncy);
+  const std::size_t ncell = static_cast<std::size_t>(wnx) * static_cast<std::size_t>(wny);
+  const double wcw = lx / wnx, wch = ly / wny;
   const double radius_max = 0.5 * max_diameter;
   const auto cell_rect = [&](std::size_t c, double& x0, double& y0, double& x1, double& y1) {
     const auto cx = static_cast<double>(c % static_cast<std::size_t>(wnx));
     const auto cy = static_cast<double>(c / static_cast<std::size_t>(wnx));
-    x0 = cfg.xmin + cx * cw;
-    x1 = cfg.xmin + (cx + 1) * cw;
-    y0 = cfg.ymin + cy * ch;
-    y1 = cfg.ymin + (cy + 1) * ch;
+    x0 = cfg.xmin + cx * wcw;
+    x1 = cfg.xmin + (cx + 1) * wcw;
+    y0 = cfg.ymin + cy * wch;
+    y1 = cfg.ymin + (cy + 1) * wch;
   };
   const auto wall_distance = [&](std::size_t k, double x0, double y0, double x1, double y1) {
     return segment_rect_distance(cfg.walls[k].a, cfg.walls[k].b, x0, y0, x1, y1);
@@ -184,8 +197,10 @@ void Engine::Impl::register_surfaces() {
   // at least kWallLookAhead, and in cells far from every item the whole
   // clearance, so that a disk in the open stream rarely looks at all.
   std::vector<double> reach(ncell, radius_max + kRegistrationSlack);
+  surfaces.clear();
+  if (cfg.walls.empty() && cfg.vertices.empty()) return;
+  surfaces.assign(ncell + 1, detail::SurfaceCell{});
   if (drifting) {
-    wall_clear.assign(ncell, detail::kNever);
     for (std::size_t c = 0; c < ncell; ++c) {
       double x0, y0, x1, y1;
       cell_rect(c, x0, y0, x1, y1);
@@ -194,27 +209,27 @@ void Engine::Impl::register_surfaces() {
       for (std::size_t k = 0; k < cfg.vertices.size(); ++k)
         nearest = std::min(nearest, vertex_distance(k, x0, y0, x1, y1));
       // The nearest item itself lies beyond the reach unless within kWallLookAhead.
-      wall_clear[c] = std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
-      reach[c] = radius_max + wall_clear[c] + kRegistrationSlack;
+      const double clear = std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
+      float stored = static_cast<float>(clear);
+      if (static_cast<double>(stored) > clear) stored = std::nextafter(stored, 0.0f);  // never beyond
+      surfaces[c].clear = stored;
+      reach[c] = radius_max + static_cast<double>(stored) + kRegistrationSlack;
     }
   }
-  const auto register_all = [&](auto&& dist, std::size_t count, std::vector<std::int32_t>& start,
+  const auto register_all = [&](auto&& dist, std::size_t count, std::int32_t detail::SurfaceCell::*first,
                                 std::vector<std::int32_t>& list) {
-    if (count == 0) return;
-    std::vector<std::vector<std::int32_t>> per(ncell);
+    list.clear();
     for (std::size_t c = 0; c < ncell; ++c) {
+      surfaces[c].*first = static_cast<std::int32_t>(list.size());
       double x0, y0, x1, y1;
       cell_rect(c, x0, y0, x1, y1);
       for (std::size_t k = 0; k < count; ++k)
-        if (dist(k, x0, y0, x1, y1) <= reach[c]) per[c].push_back(static_cast<std::int32_t>(k));
+        if (dist(k, x0, y0, x1, y1) <= reach[c]) list.push_back(static_cast<std::int32_t>(k));
     }
-    start.assign(ncell + 1, 0);
-    for (std::size_t c = 0; c < ncell; ++c) start[c + 1] = start[c] + static_cast<std::int32_t>(per[c].size());
-    list.clear();
-    for (const auto& v : per) list.insert(list.end(), v.begin(), v.end());
+    surfaces[ncell].*first = static_cast<std::int32_t>(list.size());
   };
-  register_all(wall_distance, cfg.walls.size(), wall_start, wall_list);
-  register_all(vertex_distance, cfg.vertices.size(), vertex_start, vertex_list);
+  register_all(wall_distance, cfg.walls.size(), &detail::SurfaceCell::walls, wall_list);
+  register_all(vertex_distance, cfg.vertices.size(), &detail::SurfaceCell::vertices, vertex_list);
 }
 
 // Does a disk of `species` at r overlap (deeper than tol) any disk, wall or
@@ -237,15 +252,14 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
       if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
     }
   }
+  if (surfaces.empty()) return false;
   const std::size_t lc = drifting ? wall_cell(r.x, r.y) : linear_cell(c);
-  if (!wall_start.empty())
-    for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
-      const Wall& w = cfg.walls[wall_list[k]];
-      if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
-    }
-  if (!vertex_start.empty())
-    for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k)
-      if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
+  for (std::int32_t k = surfaces[lc].walls; k < surfaces[lc + 1].walls; ++k) {
+    const Wall& w = cfg.walls[wall_list[k]];
+    if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
+  }
+  for (std::int32_t k = surfaces[lc].vertices; k < surfaces[lc + 1].vertices; ++k)
+    if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
   return false;
 }
 

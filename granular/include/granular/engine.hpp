@@ -218,12 +218,17 @@ struct FlowConfig {
   //             missing collisional pressure lets the side gas expand
   //             (density -5% near the sides at nu = 0.1).
   enum class Sides { mirror, open_flux } sides = Sides::mirror;
-  // Engine cell side in diameters; 0: automatic (sized to the inflow).
+  // Engine cell side in diameters; 0: automatic_cell() (from the inflow's
+  // mean free path).
   double cell = 0.0;
   // Cells drift with the inflow speed (EngineConfig::grid_speed); false: a
   // fixed grid (the engine before 2026-12-02; same physics, more events).
   bool comoving_cells = true;
 };
+
+// The engine cell side FlowConfig::cell = 0 stands for (diameters): a
+// third of the inflow gas's mean free path, at least one diameter.
+double automatic_cell(const FlowConfig& c);
 
 class FlowSimulation {
  public:

@@ -16,8 +16,8 @@
 // CELL sets the engine's cell side in diameters (FlowConfig::cell): "auto"
 // (the default, matched to the inflow) or a number; prefixed with "fixed:"
 // the cells do not drift with the stream (FlowConfig::comoving_cells =
-// false): "fixed:1" is the engine as it was before 2026-12-02. Several settings are run in interleaved rounds (each
-// round runs every setting once, with that round's seed), so that a noisy
+// false): "fixed:1" is the engine as it was before 2026-12-02. Several settings are run in
+// interleaved rounds (each round runs every setting once, with that round's seed), so that a noisy
 // shared host affects them alike; the last line gives the rate of the last
 // setting over the first: the ratio of the medians and the median of the
 // per-round ratios. One line per run goes to stderr.
@@ -95,7 +95,8 @@ Run run_once(const granular::FlowSetup& setup, const Setting& s, double flow_thr
 int usage(int code) {
   std::fprintf(code == 0 ? stdout : stderr,
                "usage: granular_stream_rate [--scene FILE] [--flow-throughs 3] [--rounds 3]\n"
-               "                            [--seed 1] [CELL ...]   (CELL: [fixed:]auto or [fixed:]diameters)\n"
+               "                            [--seed 1] [CELL ...]   (CELL: [fixed:]auto or "
+               "[fixed:]diameters)\n"
                "Disk-disk collisions per CPU second of the flow stage's stream past a body.\n");
   return code;
 }
@@ -113,11 +114,16 @@ int main(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     Setting s;
     if (a == "--help" || a == "-h") return usage(0);
-    if (a == "--scene" && has_value) scene_path = argv[++i];
-    else if (a == "--flow-throughs" && has_value) flow_throughs = std::atof(argv[++i]);
-    else if (a == "--rounds" && has_value) rounds = std::atoi(argv[++i]);
-    else if (a == "--seed" && has_value) seed = std::strtoull(argv[++i], nullptr, 10);
-    else if (!a.empty() && a[0] != '-' && parse_setting(a, s)) settings.push_back(s);
+    if (a == "--scene" && has_value)
+      scene_path = argv[++i];
+    else if (a == "--flow-throughs" && has_value)
+      flow_throughs = std::atof(argv[++i]);
+    else if (a == "--rounds" && has_value)
+      rounds = std::atoi(argv[++i]);
+    else if (a == "--seed" && has_value)
+      seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (!a.empty() && a[0] != '-' && parse_setting(a, s))
+      settings.push_back(s);
     else {
       std::fprintf(stderr, "granular_stream_rate: unknown or bad argument '%s'\n", a.c_str());
       return usage(2);
@@ -129,24 +135,28 @@ int main(int argc, char** argv) {
   }
   if (settings.empty()) settings.push_back(Setting{"auto"});
   const granular::FlowSetup setup = granular::make_flow_setup(scene::load_scene(scene_path));
-  std::printf("scene %s: %.0f disks expected, U = %.3f, %.2f flow-through times of %.2f, %d rounds\n",
-              scene_path.c_str(), setup.expected_particles, setup.config.inflow_speed, flow_throughs,
-              setup.flow_through_time, rounds);
+  std::printf(
+      "scene %s: %.0f disks expected, U = %.3f, %.2f flow-through times of %.2f, %d rounds\n",
+      scene_path.c_str(), setup.expected_particles, setup.config.inflow_speed, flow_throughs,
+      setup.flow_through_time, rounds);
 
   std::vector<std::vector<Run>> runs(settings.size());
   for (int r = 0; r < rounds; ++r) {
     for (std::size_t k = 0; k < settings.size(); ++k) {
-      runs[k].push_back(run_once(setup, settings[k], flow_throughs, seed + static_cast<std::uint64_t>(r)));
+      runs[k].push_back(
+          run_once(setup, settings[k], flow_throughs, seed + static_cast<std::uint64_t>(r)));
       const Run& x = runs[k].back();
       std::fprintf(stderr,
-                   "round %d cell %s: %.0f disk collisions/s (cpu %.2f s), %zu disks at the end, recoveries %llu, "
+                   "round %d cell %s: %.0f disk collisions/s (cpu %.2f s), %zu disks at the end, "
+                   "recoveries %llu, "
                    "max overlap %.1e\n",
                    r + 1, settings[k].label.c_str(), x.rate, x.cpu, x.stats.particles,
                    static_cast<unsigned long long>(x.stats.recoveries), x.stats.max_overlap);
     }
   }
-  std::printf("%10s %11s %14s %12s %10s %10s %10s %10s %10s %10s\n", "cell", "cell_dxdy", "coll/s(cpu)",
-              "disk_coll", "events/c", "cross/c", "recheck/c", "stale/c", "wall/c", "insert/c");
+  std::printf("%10s %11s %14s %12s %10s %10s %10s %10s %10s %10s\n", "cell", "cell_dxdy",
+              "coll/s(cpu)", "disk_coll", "events/c", "cross/c", "recheck/c", "stale/c", "wall/c",
+              "insert/c");
   for (std::size_t k = 0; k < settings.size(); ++k) {
     std::vector<double> rates;
     for (const Run& x : runs[k]) rates.push_back(x.rate);
@@ -154,10 +164,14 @@ int main(int argc, char** argv) {
     const double c = static_cast<double>(x.stats.disk_collisions);
     char dims[32];
     std::snprintf(dims, sizeof dims, "%.2fx%.2f", x.cell_x, x.cell_y);
-    std::printf("%10s %11s %14.0f %12llu %10.2f %10.2f %10.3f %10.3f %10.4f %10.4f\n", settings[k].label.c_str(),
-                dims, median(rates), static_cast<unsigned long long>(x.stats.disk_collisions),
-                static_cast<double>(x.counts.events) / c, static_cast<double>(x.counts.cell_crossings) / c,
-                static_cast<double>(x.counts.wall_rechecks) / c, static_cast<double>(x.counts.repredictions) / c, static_cast<double>(x.stats.wall_collisions) / c,
+    std::printf("%10s %11s %14.0f %12llu %10.2f %10.2f %10.3f %10.3f %10.4f %10.4f\n",
+                settings[k].label.c_str(), dims, median(rates),
+                static_cast<unsigned long long>(x.stats.disk_collisions),
+                static_cast<double>(x.counts.events) / c,
+                static_cast<double>(x.counts.cell_crossings) / c,
+                static_cast<double>(x.counts.wall_rechecks) / c,
+                static_cast<double>(x.counts.repredictions) / c,
+                static_cast<double>(x.stats.wall_collisions) / c,
                 static_cast<double>(x.stats.inserted) / c);
   }
   if (settings.size() >= 2) {
@@ -167,9 +181,10 @@ int main(int argc, char** argv) {
       last.push_back(runs.back()[static_cast<std::size_t>(r)].rate);
       ratio.push_back(last.back() / first.back());
     }
-    std::printf("rate(%s) / rate(%s), CPU time: ratio of medians %.3f; per round median %.3f (%d rounds)\n",
-                settings.back().label.c_str(), settings.front().label.c_str(), median(last) / median(first),
-                median(ratio), rounds);
+    std::printf(
+        "rate(%s) / rate(%s), CPU time: ratio of medians %.3f; per round median %.3f (%d rounds)\n",
+        settings.back().label.c_str(), settings.front().label.c_str(), median(last) / median(first),
+        median(ratio), rounds);
   }
   return 0;
 }

@@ -55,7 +55,8 @@ void fill_lattice(Engine& e, double lo, double hi, double spacing, std::uint64_t
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal;
   for (double y = lo + spacing; y < hi - kRadius; y += spacing)
-    for (double x = lo + spacing; x < hi - kRadius; x += spacing) e.add({x, y}, {normal(rng), normal(rng)});
+    for (double x = lo + spacing; x < hi - kRadius; x += spacing)
+      e.add({x, y}, {normal(rng), normal(rng)});
 }
 
 TEST(EngineDrift, FlowPastAWedgeHasNoHiddenOverlap) {
@@ -64,7 +65,10 @@ TEST(EngineDrift, FlowPastAWedgeHasNoHiddenOverlap) {
   for (const double cell : {1.0, 2.5}) {
     SCOPED_TRACE("cell " + std::to_string(cell));
     FlowConfig c;
-    c.xmin = -20; c.xmax = 60; c.ymin = 0; c.ymax = 40;
+    c.xmin = -20;
+    c.xmax = 60;
+    c.ymin = 0;
+    c.ymax = 40;
     c.symmetric = true;
     c.body_chains = {{nose, end}};  // body below, on the right of travel
     c.inflow_speed = 4.0;
@@ -159,7 +163,8 @@ TEST(EngineDrift, PeriodicXFacesAreRefused) {
     Engine e(c);
     FAIL() << "a drifting grid with periodic x faces was accepted";
   } catch (const scene::InputError& err) {
-    EXPECT_NE(std::string(err.what()).find("non-periodic x faces"), std::string::npos) << err.what();
+    EXPECT_NE(std::string(err.what()).find("non-periodic x faces"), std::string::npos)
+        << err.what();
   }
 }
 

@@ -52,7 +52,11 @@ TEST(EngineFlow, EmptyDomainKeepsTheFreeStream) {
     for (int k = 0; k < 300; ++k) {
       f.run_until(100.0 + 1.0 * k);
       const Moments s = sample(f, 10, 140, 10, 90);
-      m.count += s.count; m.vx += s.vx; m.vy += s.vy; m.vxx += s.vxx; m.vyy += s.vyy;
+      m.count += s.count;
+      m.vx += s.vx;
+      m.vy += s.vy;
+      m.vxx += s.vxx;
+      m.vyy += s.vyy;
       area += 130.0 * 80.0;
     }
     const Stats st = f.stats();

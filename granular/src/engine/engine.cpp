@@ -106,7 +106,8 @@ int Engine::Impl::cell_of(double x, double y) const {
 std::size_t Engine::Impl::wall_cell(double x, double y) const {
   const int cx = std::clamp(static_cast<int>(std::floor((x - cfg.xmin) * inv_wcw)), 0, wnx - 1);
   const int cy = std::clamp(static_cast<int>(std::floor((y - cfg.ymin) * inv_wch)), 0, wny - 1);
-  return static_cast<std::size_t>(cy) * static_cast<std::size_t>(wnx) + static_cast<std::size_t>(cx);
+  return static_cast<std::size_t>(cy) * static_cast<std::size_t>(wnx) +
+         static_cast<std::size_t>(cx);
 }
 
 // The column whose number modulo ncx is cx, nearest to the point xi: the
@@ -117,8 +118,10 @@ double Engine::Impl::column_of(double xi, int cx) const {
   const double n = static_cast<double>(ncx);
   const double k0 = std::floor(xi * inv_cw);
   double d = static_cast<double>(cx) - (k0 - n * std::floor(k0 * inv_ncx));
-  if (2.0 * d > n) d -= n;
-  else if (2.0 * d < -n) d += n;
+  if (2.0 * d > n)
+    d -= n;
+  else if (2.0 * d < -n)
+    d += n;
   return k0 + d;
 }
 
@@ -315,9 +318,18 @@ void Engine::Impl::predict_cell_drifting(std::int32_t i) {
   const double t3 = detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y);
   double best = t0;
   std::uint8_t dir = detail::FACE_LEFT;
-  if (t1 < best) { best = t1; dir = detail::FACE_RIGHT; }
-  if (t2 < best) { best = t2; dir = detail::FACE_BOTTOM; }
-  if (t3 < best) { best = t3; dir = detail::FACE_TOP; }
+  if (t1 < best) {
+    best = t1;
+    dir = detail::FACE_RIGHT;
+  }
+  if (t2 < best) {
+    best = t2;
+    dir = detail::FACE_BOTTOM;
+  }
+  if (t3 < best) {
+    best = t3;
+    dir = detail::FACE_TOP;
+  }
   si.cell_t = now + best;
   si.cell_dir = dir;
 }
@@ -332,7 +344,8 @@ void Engine::Impl::join_timer(std::int32_t i) {
 }
 
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
-  if (!wrap_axis(cx, ncx, wrap_x, wrap_lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy)) return false;
+  if (!wrap_axis(cx, ncx, wrap_x, wrap_lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy))
+    return false;
   cell = pack_cell(cx, cy);
   return true;
 }
@@ -408,7 +421,8 @@ void Engine::Impl::scan_list(std::int32_t i, std::int32_t first, double shx, dou
 // then repeated at that horizon (WALL_RECHECK) unless the disk reaches an
 // x face of the rectangle first. The drifting grid keeps both in the
 // slot's timer, which joins cell_t: call after predict_cell().
-void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx, double vy) {
+void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx,
+                                 double vy) {
   if (!drifting) {
     scan_walls_for(i, linear_cell(c), rx, ry, vx, vy);
     return;
@@ -418,7 +432,10 @@ void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, do
   const double t_right = detail::first_contact(cfg.xmax - rx, -vx, -0.5 * g.x);
   double timer = t_left;
   std::uint8_t dir = detail::EXIT_LEFT;
-  if (t_right < timer) { timer = t_right; dir = detail::EXIT_RIGHT; }
+  if (t_right < timer) {
+    timer = t_right;
+    dir = detail::EXIT_RIGHT;
+  }
   if (surfaces.empty()) {  // nothing to look up: only the exits
     timer_t[i] = now + timer;
     s[i].timer_dir = dir;
@@ -432,7 +449,10 @@ void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, do
     const double speed = std::sqrt(vx * vx + vy * vy);
     const double accel = std::sqrt(g.x * g.x + g.y * g.y);
     const double dt = 2.0 * clear / (speed + std::sqrt(speed * speed + 2.0 * accel * clear));
-    if (dt < timer) { timer = dt; dir = detail::WALL_RECHECK; }
+    if (dt < timer) {
+      timer = dt;
+      dir = detail::WALL_RECHECK;
+    }
   }
   detail::Slot& si = s[i];
   timer_t[i] = now + timer;
@@ -645,10 +665,12 @@ void Engine::Impl::leave_or_recheck(std::int32_t i) {
   ++rechecks;
   --crossings;
   predict_cell(i);
-  const bool stale = si.type == EventType::disk &&
-                     (!p[si.partner].alive || p[si.partner].count != si.pcount);
-  if (stale) predict(i);
-  else scan_surfaces(i, q.cell, q.x, q.y, q.vx, q.vy);
+  const bool stale =
+      si.type == EventType::disk && (!p[si.partner].alive || p[si.partner].count != si.pcount);
+  if (stale)
+    predict(i);
+  else
+    scan_surfaces(i, q.cell, q.x, q.y, q.vx, q.vy);
   schedule(i);
 }
 
@@ -894,7 +916,9 @@ EventCounts Engine::event_counts() const {
   return {impl_->events, impl_->crossings, impl_->repredictions, impl_->rechecks};
 }
 
-Vec2 Engine::cell_size() const { return {impl_->cw, impl_->ch}; }
+Vec2 Engine::cell_size() const {
+  return {impl_->cw, impl_->ch};
+}
 
 const EngineConfig& Engine::config() const { return impl_->cfg; }
 std::span<const Particle> Engine::particles() const { return {impl_->p.data(), impl_->p.size()}; }

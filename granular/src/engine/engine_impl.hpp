@@ -16,7 +16,15 @@ enum class EventType : std::uint8_t { none, disk, wall, vertex };
 
 // What Slot::cell_t is the time of: a face of the disk's cell, or (drifting
 // grid only) the rectangle's x faces and the wall look-up's horizon.
-enum CellEvent : std::uint8_t { FACE_LEFT, FACE_RIGHT, FACE_BOTTOM, FACE_TOP, EXIT_LEFT, EXIT_RIGHT, WALL_RECHECK };
+enum CellEvent : std::uint8_t {
+  FACE_LEFT,
+  FACE_RIGHT,
+  FACE_BOTTOM,
+  FACE_TOP,
+  EXIT_LEFT,
+  EXIT_RIGHT,
+  WALL_RECHECK
+};
 
 // Cold per-slot state: the slot's earliest collision prediction and its
 // next cell crossing, kept apart so that a cell crossing does not cost the
@@ -27,8 +35,8 @@ struct Slot {
   std::int32_t partner;   // disk slot, wall or vertex index
   std::uint32_t pcount;   // partner's collision counter when predicted
   EventType type;
-  std::uint8_t cell_dir;  // CellEvent
-  std::uint8_t timer_dir; // drifting grid: CellEvent of Impl::timer_t (EXIT_* or WALL_RECHECK)
+  std::uint8_t cell_dir;   // CellEvent
+  std::uint8_t timer_dir;  // drifting grid: CellEvent of Impl::timer_t (EXIT_* or WALL_RECHECK)
   std::uint32_t qver;     // calendar version: only the entry carrying it is live
 
   double key() const { return coll_t < cell_t ? coll_t : cell_t; }  // next event time
@@ -176,7 +184,8 @@ struct Engine::Impl {
                  double vx, double vy, double rad_i);
   void scan_cell_for(std::int32_t i, int cx, int cy, double rx, double ry, double vx, double vy,
                      double sig_i);
-  void scan_walls_for(std::int32_t i, std::size_t wall_cell, double rx, double ry, double vx, double vy);
+  void scan_walls_for(std::int32_t i, std::size_t wall_cell, double rx, double ry, double vx,
+                      double vy);
   void schedule(std::int32_t i);
   void process(std::int32_t i);
   bool live(const detail::Calendar::Entry& e) const { return s[e.slot].qver == e.ver; }

@@ -146,8 +146,10 @@ void Engine::Impl::init(EngineConfig c) {
   ch = ly / ncy;
   // The fixed look-up grid of walls and vertices: the cell grid itself, or
   // for a drifting grid coarse cells whose records stay in cache.
-  wnx = drifting ? std::max(1, static_cast<int>(std::floor(lx / std::max(cell, kSurfaceCell)))) : ncx;
-  wny = drifting ? std::max(1, static_cast<int>(std::floor(ly / std::max(cell, kSurfaceCell)))) : ncy;
+  wnx =
+      drifting ? std::max(1, static_cast<int>(std::floor(lx / std::max(cell, kSurfaceCell)))) : ncx;
+  wny =
+      drifting ? std::max(1, static_cast<int>(std::floor(ly / std::max(cell, kSurfaceCell)))) : ncy;
   inv_wcw = wnx / lx;
   inv_wch = wny / ly;
   inv_cw = 1.0 / cw;
@@ -205,18 +207,22 @@ void Engine::Impl::register_surfaces() {
       double x0, y0, x1, y1;
       cell_rect(c, x0, y0, x1, y1);
       double nearest = detail::kNever;
-      for (std::size_t k = 0; k < cfg.walls.size(); ++k) nearest = std::min(nearest, wall_distance(k, x0, y0, x1, y1));
+      for (std::size_t k = 0; k < cfg.walls.size(); ++k)
+        nearest = std::min(nearest, wall_distance(k, x0, y0, x1, y1));
       for (std::size_t k = 0; k < cfg.vertices.size(); ++k)
         nearest = std::min(nearest, vertex_distance(k, x0, y0, x1, y1));
       // The nearest item itself lies beyond the reach unless within kWallLookAhead.
-      const double clear = std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
+      const double clear =
+          std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
       float stored = static_cast<float>(clear);
-      if (static_cast<double>(stored) > clear) stored = std::nextafter(stored, 0.0f);  // never beyond
+      if (static_cast<double>(stored) > clear)
+        stored = std::nextafter(stored, 0.0f);  // never beyond
       surfaces[c].clear = stored;
       reach[c] = radius_max + static_cast<double>(stored) + kRegistrationSlack;
     }
   }
-  const auto register_all = [&](auto&& dist, std::size_t count, std::int32_t detail::SurfaceCell::*first,
+  const auto register_all = [&](auto&& dist, std::size_t count,
+                                std::int32_t detail::SurfaceCell::*first,
                                 std::vector<std::int32_t>& list) {
     list.clear();
     for (std::size_t c = 0; c < ncell; ++c) {

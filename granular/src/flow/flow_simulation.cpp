@@ -138,9 +138,7 @@ struct FlowSimulation::Impl {
   }
 };
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 double automatic_cell(const FlowConfig& c) {
   // Mean free path of hard disks in 2D: 1 / (sqrt(2) n d chi), with the

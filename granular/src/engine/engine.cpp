@@ -312,6 +312,21 @@ void Engine::Impl::predict_cell_drifting(std::int32_t i) {
   const double xlo = k * cw, xhi = (k + 1.0) * cw;
   const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
   const Vec2 g = cfg.gravity;
+  if (g.x == 0.0 && g.y == 0.0) {
+    // Straight flight (the stream's usual case): only the face each
+    // component moves towards can be reached, as first_contact() finds
+    // with more work; a gap closed by round-off gives 0 as there.
+    const double vr = q.vx - drift;
+    const double tx =
+        std::max(0.0, vr > 0.0 ? (xhi - xi) / vr : vr < 0.0 ? (xlo - xi) / vr : kNever);
+    const double ty = std::max(
+        0.0, q.vy > 0.0 ? (yhi - q.y) / q.vy : q.vy < 0.0 ? (ylo - q.y) / q.vy : kNever);
+    const bool along_x = tx <= ty;  // ties as in the general case: x faces first
+    si.cell_t = now + (along_x ? tx : ty);
+    si.cell_dir = along_x ? (vr > 0.0 ? detail::FACE_RIGHT : detail::FACE_LEFT)
+                          : (q.vy > 0.0 ? detail::FACE_TOP : detail::FACE_BOTTOM);
+    return;
+  }
   const double t0 = detail::first_contact(xi - xlo, q.vx - drift, 0.5 * g.x);
   const double t1 = detail::first_contact(xhi - xi, drift - q.vx, -0.5 * g.x);
   const double t2 = detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y);

@@ -24,6 +24,9 @@ constexpr double kRegistrationSlack = 1e-9;
 // most wnx + 1 of them at a time), so that the columns on its two sides,
 // numbered modulo ncx, are never adjacent.
 constexpr int kSpareColumns = 3;
+// Drifting grid: relative margin of the columns over the largest diameter
+// (covers the round-off of xi up to drift * t ~ 1e9 diameters).
+constexpr double kDriftCellMargin = 1e-6;
 // Drifting grid: a disk near a wall or vertex looks up the fixed grid's
 // items again after travelling this far (diameters). Larger: fewer
 // look-ups, longer lists.
@@ -126,7 +129,11 @@ void Engine::Impl::init(EngineConfig c) {
   drift = cfg.grid_speed;
   if (!std::isfinite(drift)) bad("grid_speed must be finite");
   if (drifting && periodic_x) bad("a drifting cell grid (grid_speed) needs non-periodic x faces");
-  const double cell = std::max(max_diameter, cfg.min_cell);
+  // A drifting column's faces are at k w in xi = x - xmin - drift t, whose
+  // round-off grows with t (~1e-12 d at drift t ~ 1e4): columns a hair
+  // wider than a diameter keep every touching pair in adjacent columns.
+  const double cell =
+      std::max(max_diameter * (drifting ? 1.0 + kDriftCellMargin : 1.0), cfg.min_cell);
   // Checked as doubles, before the counts are cast to int.
   const double cells_x = std::floor(lx / cell) + (drifting ? kSpareColumns : 0),
                cells_y = std::floor(ly / cell);

@@ -960,7 +960,8 @@ double Engine::bytes_per_particle() const {
   const double bytes = static_cast<double>(m.p.capacity() * sizeof(Particle) +
                                            m.s.capacity() * sizeof(detail::Slot) +
                                            m.head.capacity() * sizeof(std::int32_t) +
-                                           m.free_slots.capacity() * sizeof(std::int32_t)) +
+                                           m.free_slots.capacity() * sizeof(std::int32_t) +
+                                           m.timer_t.capacity() * sizeof(double)) +
                        m.cal.bytes();
   return bytes / n;
 }

@@ -10,7 +10,7 @@
 namespace granular {
 namespace {
 
-// Statistical tolerances: ~7 independent samples of ~700 particles.
+// Statistical tolerances: ~7 independent samples of ~700 particles per run.
 constexpr double kDensityTolerance = 0.03;
 constexpr double kVelocityTolerance = 0.01;            // relative, U = 3
 constexpr double kTransverseVelocityTolerance = 0.04;  // absolute: ~3 sigma of the mean
@@ -32,25 +32,37 @@ Moments sample(const FlowSimulation& f, double x0, double x1, double y0, double 
 }
 
 // Default sides (mirror) and the inflow momentum correction: the free
-// stream crosses an empty domain unchanged.
+// stream crosses an empty domain unchanged. Three independent runs pooled:
+// one run's temperature alone scatters by ~0.015 (1.007-1.043 over seeds
+// 9-11, on the drifting and the fixed cell grid alike).
 TEST(EngineFlow, EmptyDomainKeepsTheFreeStream) {
+  Moments m;
+  double area = 0;
   FlowConfig c;
   c.xmin = 0; c.xmax = 150; c.ymin = 0; c.ymax = 100;
   c.inflow_speed = 3.0;
   c.packing_fraction = 0.1;
-  c.seed = 9;
   c.prefill = false;  // the inflow alone must fill the domain
-  FlowSimulation f(c);
-  Moments m;
   const double n = c.packing_fraction / (std::numbers::pi / 4.0);
-  // After two flow-through times, average snapshots of the interior over
-  // ~7 flow-through times of the sampled region (independent samples).
-  double area = 0;
-  for (int k = 0; k < 300; ++k) {
-    f.run_until(100.0 + 1.0 * k);
-    const Moments s = sample(f, 10, 140, 10, 90);
-    m.count += s.count; m.vx += s.vx; m.vy += s.vy; m.vxx += s.vxx; m.vyy += s.vyy;
-    area += 130.0 * 80.0;
+  for (const std::uint64_t seed : {9, 10, 11}) {
+    c.seed = seed;
+    FlowSimulation f(c);
+    // After two flow-through times, average snapshots of the interior over
+    // ~7 flow-through times of the sampled region (independent samples).
+    for (int k = 0; k < 300; ++k) {
+      f.run_until(100.0 + 1.0 * k);
+      const Moments s = sample(f, 10, 140, 10, 90);
+      m.count += s.count;
+      m.vx += s.vx;
+      m.vy += s.vy;
+      m.vxx += s.vxx;
+      m.vyy += s.vyy;
+      area += 130.0 * 80.0;
+    }
+    const Stats st = f.stats();
+    EXPECT_GT(st.inserted, 0u);
+    EXPECT_GT(st.removed, 0u);
+    EXPECT_LE(st.max_overlap, kRoundOffOverlap);
   }
   EXPECT_NEAR(m.count / area / n, 1.0, kDensityTolerance);
   const double ux = m.vx / m.count, uy = m.vy / m.count;
@@ -58,10 +70,6 @@ TEST(EngineFlow, EmptyDomainKeepsTheFreeStream) {
   EXPECT_NEAR(uy, 0.0, kTransverseVelocityTolerance);
   const double temp = 0.5 * (m.vxx / m.count - ux * ux + m.vyy / m.count - uy * uy);
   EXPECT_NEAR(temp, c.temperature, kTemperatureTolerance);
-  const Stats st = f.stats();
-  EXPECT_GT(st.inserted, 0u);
-  EXPECT_GT(st.removed, 0u);
-  EXPECT_LE(st.max_overlap, kRoundOffOverlap);
 }
 
 TEST(EngineFlow, SymmetricWedgeIsImpenetrable) {

@@ -4,7 +4,7 @@ add_stage_test(NAME granular_engine_tests PREFIX granular
   SOURCES engine_support.cpp engine_contact_test.cpp engine_surface_test.cpp
           engine_conservation_test.cpp engine_eos_test.cpp engine_haff_test.cpp
           engine_box_run_test.cpp engine_checkpoint_test.cpp engine_flow_test.cpp
-          engine_calendar_test.cpp engine_grid_test.cpp
+          engine_calendar_test.cpp engine_grid_test.cpp engine_drift_test.cpp
   LIBS granular_core LABELS fast TIMEOUT 120)
 # The calendar is internal to the engine; its test reads the private header.
 target_include_directories(granular_engine_tests PRIVATE ${PROJECT_SOURCE_DIR}/granular/src/engine)

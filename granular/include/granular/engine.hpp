@@ -33,6 +33,15 @@ struct Stats {
   double time = 0.0;                  // simulated time
 };
 
+// What the event loop spent its events on (a diagnostic for benchmarks; not
+// saved by checkpoints, so a restored engine counts from zero).
+struct EventCounts {
+  std::uint64_t events = 0;          // calendar entries processed (all kinds below)
+  std::uint64_t cell_crossings = 0;  // cell-face crossings, removals at open faces included
+  std::uint64_t repredictions = 0;   // collisions found stale (the partner had changed course)
+  std::uint64_t wall_rechecks = 0;   // wall look-ups repeated at their horizon (drifting grid)
+};
+
 // A particle species: every disk belongs to one.
 struct Species {
   double radius = 0.5;
@@ -87,6 +96,12 @@ struct EngineConfig {
   // Smallest cell side; 0: the largest diameter. Cells are never smaller
   // than the largest diameter.
   double min_cell = 0.0;
+  // Speed (along +x) at which the cell grid drifts; 0: a fixed grid. In a
+  // stream the cells move with the gas, so that a disk crosses cell faces
+  // at its thermal speed instead of the stream's: far fewer events. Walls
+  // and vertices are then looked up in a fixed grid of their own, and the
+  // x faces of the rectangle must not be periodic.
+  double grid_speed = 0.0;
   // Not saved by checkpoints (it changes no result).
   LookAhead look_ahead = LookAhead::automatic;
 };
@@ -132,6 +147,8 @@ class Engine {
   double time() const;
   Stats stats() const;  // kinetic_energy computed at time() (O(N))
   Stats stats_light() const;  // counters only: kinetic_energy and particles left 0
+  EventCounts event_counts() const;
+  Vec2 cell_size() const;  // side of the cell grid's cells along x and y (diameters)
   const EngineConfig& config() const;
 
   // f(Vec2 r, Vec2 v) at time() for every disk in the system.
@@ -201,7 +218,17 @@ struct FlowConfig {
   //             missing collisional pressure lets the side gas expand
   //             (density -5% near the sides at nu = 0.1).
   enum class Sides { mirror, open_flux } sides = Sides::mirror;
+  // Engine cell side in diameters; 0: automatic_cell() (from the inflow's
+  // mean free path).
+  double cell = 0.0;
+  // Cells drift with the inflow speed (EngineConfig::grid_speed); false: a
+  // fixed grid (the engine before 2026-12-02; same physics, more events).
+  bool comoving_cells = true;
 };
+
+// The engine cell side FlowConfig::cell = 0 stands for (diameters): a
+// third of the inflow gas's mean free path, at least one diameter.
+double automatic_cell(const FlowConfig& c);
 
 class FlowSimulation {
  public:

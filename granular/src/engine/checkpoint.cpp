@@ -16,7 +16,7 @@ namespace granular {
 
 namespace {
 
-constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '3'};
+constexpr char kMagic[8] = {'G', 'R', 'A', 'N', 'C', 'K', 'P', '4'};
 
 template <class T>
 void put(std::ostream& o, const T& v) {
@@ -53,6 +53,7 @@ void put_config(std::ostream& o, const EngineConfig& c) {
   put(o, c.gravity);
   put(o, c.tc);
   put(o, c.min_cell);
+  put(o, c.grid_speed);
 }
 
 EngineConfig get_config(std::istream& in) {
@@ -66,6 +67,7 @@ EngineConfig get_config(std::istream& in) {
   get(in, c.gravity);
   get(in, c.tc);
   get(in, c.min_cell);
+  get(in, c.grid_speed);
   return c;
 }
 
@@ -77,6 +79,7 @@ void Engine::save(std::ostream& o) const {
   put_config(o, m.cfg);
   put_vec(o, m.p);
   put_vec(o, m.s);
+  put_vec(o, m.timer_t);
   put_vec(o, m.head);
   put_vec(o, m.free_slots);
   put(o, m.started);
@@ -105,9 +108,11 @@ Engine Engine::load(std::istream& in) {
   Impl& m = *e.impl_;
   get_vec(in, m.p);
   get_vec(in, m.s);
+  get_vec(in, m.timer_t);
   decltype(m.head) head;
   get_vec(in, head);
-  if (head.size() != m.head.size() || m.s.size() != m.p.size())
+  if (head.size() != m.head.size() || m.s.size() != m.p.size() ||
+      m.timer_t.size() != (m.drifting ? m.p.size() : 0))
     throw scene::InputError("checkpoint: inconsistent grid");
   m.head = std::move(head);
   get_vec(in, m.free_slots);

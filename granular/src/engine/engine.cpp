@@ -91,11 +91,38 @@ void Engine::Impl::advance(Particle& q) const {
 }
 
 int Engine::Impl::cell_of(double x, double y) const {
-  int cx = static_cast<int>(std::floor((x - cfg.xmin) / cw));
   int cy = static_cast<int>(std::floor((y - cfg.ymin) / ch));
-  cx = std::clamp(cx, 0, ncx - 1);
   cy = std::clamp(cy, 0, ncy - 1);
+  if (drifting) {
+    const auto k = static_cast<std::int64_t>(std::floor((x - cfg.xmin - drift * now) / cw));
+    const std::int64_t m = k % ncx;
+    return pack_cell(static_cast<int>(m < 0 ? m + ncx : m), cy);
+  }
+  int cx = static_cast<int>(std::floor((x - cfg.xmin) / cw));
+  cx = std::clamp(cx, 0, ncx - 1);
   return pack_cell(cx, cy);
+}
+
+std::size_t Engine::Impl::wall_cell(double x, double y) const {
+  const int cx = std::clamp(static_cast<int>(std::floor((x - cfg.xmin) * inv_wcw)), 0, wnx - 1);
+  const int cy = std::clamp(static_cast<int>(std::floor((y - cfg.ymin) * inv_wch)), 0, wny - 1);
+  return static_cast<std::size_t>(cy) * static_cast<std::size_t>(wnx) +
+         static_cast<std::size_t>(cx);
+}
+
+// The column whose number modulo ncx is cx, nearest to the point xi: the
+// stored column may differ from floor(xi / cw) by round-off at a face.
+// (Double arithmetic throughout: an integer division per event costs more
+// than the rest; a remainder off by ncx from round-off is wrapped back.)
+double Engine::Impl::column_of(double xi, int cx) const {
+  const double n = static_cast<double>(ncx);
+  const double k0 = std::floor(xi * inv_cw);
+  double d = static_cast<double>(cx) - (k0 - n * std::floor(k0 * inv_ncx));
+  if (2.0 * d > n)
+    d -= n;
+  else if (2.0 * d < -n)
+    d += n;
+  return k0 + d;
 }
 
 void Engine::Impl::cell_insert(std::int32_t i, int c) {
@@ -249,6 +276,10 @@ void Engine::Impl::rebuild_calendar() {
 
 // Next crossing of a face of the particle's cell (state at `now`).
 void Engine::Impl::predict_cell(std::int32_t i) {
+  if (drifting) {
+    predict_cell_drifting(i);
+    return;
+  }
   const Particle& q = p[i];
   detail::Slot& si = s[i];
   const int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
@@ -269,8 +300,67 @@ void Engine::Impl::predict_cell(std::int32_t i) {
   si.cell_dir = dir;
 }
 
+// Drifting grid: the column's faces move at `drift`, so the gaps close at
+// the disk's speed relative to the grid. (The rectangle's x faces, fixed,
+// are in the slot's timer: scan_surfaces().)
+void Engine::Impl::predict_cell_drifting(std::int32_t i) {
+  const Particle& q = p[i];
+  detail::Slot& si = s[i];
+  const int cy = cell_y(q.cell);
+  const double xi = q.x - cfg.xmin - drift * now;
+  const double k = column_of(xi, cell_x(q.cell));
+  const double xlo = k * cw, xhi = (k + 1.0) * cw;
+  const double ylo = cfg.ymin + cy * ch, yhi = cfg.ymin + (cy + 1) * ch;
+  const Vec2 g = cfg.gravity;
+  if (g.x == 0.0 && g.y == 0.0) {
+    // Straight flight (the stream's usual case): only the face each
+    // component moves towards can be reached, as first_contact() finds
+    // with more work; a gap closed by round-off gives 0 as there.
+    const double vr = q.vx - drift;
+    const double tx =
+        std::max(0.0, vr > 0.0 ? (xhi - xi) / vr : vr < 0.0 ? (xlo - xi) / vr : kNever);
+    const double ty = std::max(
+        0.0, q.vy > 0.0 ? (yhi - q.y) / q.vy : q.vy < 0.0 ? (ylo - q.y) / q.vy : kNever);
+    const bool along_x = tx <= ty;  // ties as in the general case: x faces first
+    si.cell_t = now + (along_x ? tx : ty);
+    si.cell_dir = along_x ? (vr > 0.0 ? detail::FACE_RIGHT : detail::FACE_LEFT)
+                          : (q.vy > 0.0 ? detail::FACE_TOP : detail::FACE_BOTTOM);
+    return;
+  }
+  const double t0 = detail::first_contact(xi - xlo, q.vx - drift, 0.5 * g.x);
+  const double t1 = detail::first_contact(xhi - xi, drift - q.vx, -0.5 * g.x);
+  const double t2 = detail::first_contact(q.y - ylo, q.vy, 0.5 * g.y);
+  const double t3 = detail::first_contact(yhi - q.y, -q.vy, -0.5 * g.y);
+  double best = t0;
+  std::uint8_t dir = detail::FACE_LEFT;
+  if (t1 < best) {
+    best = t1;
+    dir = detail::FACE_RIGHT;
+  }
+  if (t2 < best) {
+    best = t2;
+    dir = detail::FACE_BOTTOM;
+  }
+  if (t3 < best) {
+    best = t3;
+    dir = detail::FACE_TOP;
+  }
+  si.cell_t = now + best;
+  si.cell_dir = dir;
+}
+
+// Drifting grid: the slot's timer joins its next cell event.
+void Engine::Impl::join_timer(std::int32_t i) {
+  detail::Slot& si = s[i];
+  if (timer_t[i] < si.cell_t) {
+    si.cell_t = timer_t[i];
+    si.cell_dir = si.timer_dir;
+  }
+}
+
 bool Engine::Impl::neighbour_cell(int cx, int cy, int& cell, double& shx, double& shy) const {
-  if (!wrap_axis(cx, ncx, periodic_x, lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy)) return false;
+  if (!wrap_axis(cx, ncx, wrap_x, wrap_lx, shx) || !wrap_axis(cy, ncy, periodic_y, ly, shy))
+    return false;
   cell = pack_cell(cx, cy);
   return true;
 }
@@ -284,7 +374,7 @@ void Engine::Impl::block_of(int cell, Block& b) const {
   const int cx = cell_x(cell), cy = cell_y(cell);
   for (int d = 0; d < 3; ++d) {
     int x = cx + d - 1, y = cy + d - 1;
-    okx[d] = wrap_axis(x, ncx, periodic_x, lx, sx[d]);
+    okx[d] = wrap_axis(x, ncx, wrap_x, wrap_lx, sx[d]);
     oky[d] = wrap_axis(y, ncy, periodic_y, ly, sy[d]);
     col[d] = head_col(x);
     row[d] = head_row(y);
@@ -340,14 +430,67 @@ void Engine::Impl::scan_list(std::int32_t i, std::int32_t first, double shx, dou
   }
 }
 
-void Engine::Impl::scan_walls_for(std::int32_t i, int c, double rx, double ry, double vx,
+// Walls and vertices a disk may touch: those of its cell (fixed grid), or
+// (drifting grid) those of the fixed grid's cell it is in, which lists all
+// it could reach before travelling that cell's clearance; the look-up is
+// then repeated at that horizon (WALL_RECHECK) unless the disk reaches an
+// x face of the rectangle first. The drifting grid keeps both in the
+// slot's timer, which joins cell_t: call after predict_cell().
+void Engine::Impl::scan_surfaces(std::int32_t i, int c, double rx, double ry, double vx,
+                                 double vy) {
+  if (!drifting) {
+    scan_walls_for(i, linear_cell(c), rx, ry, vx, vy);
+    return;
+  }
+  const Vec2 g = cfg.gravity;
+  const double t_left = detail::first_contact(rx - cfg.xmin, vx, 0.5 * g.x);
+  const double t_right = detail::first_contact(cfg.xmax - rx, -vx, -0.5 * g.x);
+  double timer = t_left;
+  std::uint8_t dir = detail::EXIT_LEFT;
+  if (t_right < timer) {
+    timer = t_right;
+    dir = detail::EXIT_RIGHT;
+  }
+  if (surfaces.empty()) {  // nothing to look up: only the exits
+    timer_t[i] = now + timer;
+    s[i].timer_dir = dir;
+    join_timer(i);
+    return;
+  }
+  const std::size_t lc = wall_cell(rx, ry);
+  const double clear = static_cast<double>(surfaces[lc].clear);
+  if (clear != kNever) {
+    // The path travelled in dt is at most |v| dt + |g| dt^2 / 2.
+    const double speed = std::sqrt(vx * vx + vy * vy);
+    const double accel = std::sqrt(g.x * g.x + g.y * g.y);
+    const double dt = 2.0 * clear / (speed + std::sqrt(speed * speed + 2.0 * accel * clear));
+    if (dt < timer) {
+      timer = dt;
+      dir = detail::WALL_RECHECK;
+    }
+  }
+  detail::Slot& si = s[i];
+  timer_t[i] = now + timer;
+  si.timer_dir = dir;
+  // Beyond the timer the walls are looked up again: the horizon of the
+  // look-up's predictions (the quartic of a vertex under gravity).
+  const double cell_t = si.cell_t;
+  si.cell_t = timer_t[i];
+  scan_walls_for(i, lc, rx, ry, vx, vy);
+  si.cell_t = cell_t;
+  join_timer(i);
+}
+
+void Engine::Impl::scan_walls_for(std::int32_t i, std::size_t lc, double rx, double ry, double vx,
                                   double vy) {
   detail::Slot& si = s[i];
   const double rad = radius[p[i].species];
   const Vec2 g = cfg.gravity;
-  if (!wall_start.empty()) {
-    const std::size_t lc = linear_cell(c);
-    for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
+  if (surfaces.empty()) return;
+  const detail::SurfaceCell& here = surfaces[lc];
+  const detail::SurfaceCell& next = surfaces[lc + 1];
+  {
+    for (std::int32_t k = here.walls; k < next.walls; ++k) {
       const std::int32_t w = wall_list[k];
       const detail::WallGeom& wg = walls[w];
       const double ax = rx - wg.a.x, ay = ry - wg.a.y;
@@ -367,10 +510,9 @@ void Engine::Impl::scan_walls_for(std::int32_t i, int c, double rx, double ry, d
       si.partner = w;
     }
   }
-  if (!vertex_start.empty()) {
+  {
     const bool accel = g.x != 0.0 || g.y != 0.0;
-    const std::size_t lc = linear_cell(c);
-    for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k) {
+    for (std::int32_t k = here.vertices; k < next.vertices; ++k) {
       const std::int32_t v = vertex_list[k];
       const Vec2 vp = cfg.vertices[v].p;
       const double dt =
@@ -406,7 +548,7 @@ void Engine::Impl::predict(std::int32_t i) {
     if (first[k] >= 0) detail::prefetch(&p[first[k]]);
   }
   for (int k = 0; k < b.n; ++k) scan_list(i, first[k], b.shx[k], b.shy[k], q.x, q.y, q.vx, q.vy, rad);
-  scan_walls_for(i, p[i].cell, q.x, q.y, q.vx, q.vy);
+  scan_surfaces(i, p[i].cell, q.x, q.y, q.vx, q.vy);
 }
 
 void Engine::Impl::process(std::int32_t i) {
@@ -420,6 +562,7 @@ void Engine::Impl::process(std::int32_t i) {
       const std::int32_t j = si.partner;
       if (!p[j].alive || p[j].count != si.pcount) {
         // The partner changed course since the prediction: predict again.
+        ++repredictions;
         predict(i);
         schedule(i);
         return;
@@ -454,13 +597,19 @@ void Engine::Impl::process(std::int32_t i) {
 }
 
 void Engine::Impl::cross_cell(std::int32_t i) {
+  ++crossings;
   Particle& q = p[i];
   advance(q);
   detail::Slot& si = s[i];
-  int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
   const std::uint8_t dir = si.cell_dir;
+  if (dir >= detail::EXIT_LEFT) {
+    leave_or_recheck(i);
+    return;
+  }
+  int cx = cell_x(p[i].cell), cy = cell_y(p[i].cell);
   int ncx2 = cx + (dir == 1) - (dir == 0);
   int ncy2 = cy + (dir == 3) - (dir == 2);
+  if (drifting) ncx2 = ncx2 < 0 ? ncx - 1 : ncx2 >= ncx ? 0 : ncx2;  // columns numbered modulo ncx
   if (ncx2 < 0 || ncx2 >= ncx || ncy2 < 0 || ncy2 >= ncy) {
     const Face face = dir == 0 ? cfg.left : dir == 1 ? cfg.right : dir == 2 ? cfg.bottom : cfg.top;
     if (face == Face::open) {
@@ -487,6 +636,7 @@ void Engine::Impl::cross_cell(std::int32_t i) {
   cell_remove(i, p[i].cell);
   cell_insert(i, c);
   predict_cell(i);
+  if (drifting) join_timer(i);  // the path, hence its walls and timer, is unchanged
   const bool stale = si.type == EventType::disk &&
                      (!p[si.partner].alive || p[si.partner].count != si.pcount);
   if (stale) {
@@ -502,8 +652,40 @@ void Engine::Impl::cross_cell(std::int32_t i) {
       const int fy = ncy2 + (dir == 3 ? 1 : -1);
       for (int dx = -1; dx <= 1; ++dx) scan_cell_for(i, ncx2 + dx, fy, q.x, q.y, q.vx, q.vy, rad);
     }
-    scan_walls_for(i, c, q.x, q.y, q.vx, q.vy);
+    if (!drifting) scan_surfaces(i, c, q.x, q.y, q.vx, q.vy);
   }
+  schedule(i);
+}
+
+// Drifting grid: a disk reaching an x face of the rectangle (open: it
+// leaves; closed: a wall was tunnelled, recovered as at a cell face), or
+// its wall look-up horizon (the cell is unchanged: the stored collision
+// still holds, only the walls are looked up again).
+void Engine::Impl::leave_or_recheck(std::int32_t i) {
+  Particle& q = p[i];
+  detail::Slot& si = s[i];
+  if (si.cell_dir != detail::WALL_RECHECK) {
+    const Face face = si.cell_dir == detail::EXIT_LEFT ? cfg.left : cfg.right;
+    if (face == Face::open) {
+      remove(i);
+      return;
+    }
+    ++st.recoveries;
+    q.vx = -q.vx;
+    ++q.count;
+    predict(i);
+    schedule(i);
+    return;
+  }
+  ++rechecks;
+  --crossings;
+  predict_cell(i);
+  const bool stale =
+      si.type == EventType::disk && (!p[si.partner].alive || p[si.partner].count != si.pcount);
+  if (stale)
+    predict(i);
+  else
+    scan_surfaces(i, q.cell, q.x, q.y, q.vx, q.vy);
   schedule(i);
 }
 
@@ -624,6 +806,11 @@ bool Engine::Impl::reorder() {
   // would double the peak memory of a large system.
   for (std::size_t k = 0; k < n; ++k)
     if (s[k].type == EventType::disk) s[k].partner = new_index[static_cast<std::size_t>(s[k].partner)];
+  if (drifting) {  // 8 bytes a slot: a copy costs little
+    std::vector<double> moved(n);
+    for (std::size_t k = 0; k < n; ++k) moved[static_cast<std::size_t>(new_index[k])] = timer_t[k];
+    timer_t.swap(moved);
+  }
   for (std::size_t start = 0; start < n; ++start) {
     // new_index[k] < 0 marks a slot already placed.
     if (new_index[start] < 0 || static_cast<std::size_t>(new_index[start]) == start) continue;
@@ -667,6 +854,7 @@ void Engine::Impl::build_all() {
 void Engine::reserve(std::size_t n) {
   impl_->p.reserve(n);
   impl_->s.reserve(n);
+  if (impl_->drifting) impl_->timer_t.reserve(n);
 }
 
 void Engine::start() {
@@ -739,6 +927,14 @@ Stats Engine::stats_light() const {
   return out;
 }
 
+EventCounts Engine::event_counts() const {
+  return {impl_->events, impl_->crossings, impl_->repredictions, impl_->rechecks};
+}
+
+Vec2 Engine::cell_size() const {
+  return {impl_->cw, impl_->ch};
+}
+
 const EngineConfig& Engine::config() const { return impl_->cfg; }
 std::span<const Particle> Engine::particles() const { return {impl_->p.data(), impl_->p.size()}; }
 
@@ -764,7 +960,8 @@ double Engine::bytes_per_particle() const {
   const double bytes = static_cast<double>(m.p.capacity() * sizeof(Particle) +
                                            m.s.capacity() * sizeof(detail::Slot) +
                                            m.head.capacity() * sizeof(std::int32_t) +
-                                           m.free_slots.capacity() * sizeof(std::int32_t)) +
+                                           m.free_slots.capacity() * sizeof(std::int32_t) +
+                                           m.timer_t.capacity() * sizeof(double)) +
                        m.cal.bytes();
   return bytes / n;
 }

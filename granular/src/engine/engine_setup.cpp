@@ -20,6 +20,21 @@ constexpr double kAddOverlapTolerance = 1e-12;
 // Cells register walls and vertices this much beyond the largest radius, so
 // that round-off in the cell geometry cannot drop a contact.
 constexpr double kRegistrationSlack = 1e-9;
+// Drifting grid: columns beyond those the rectangle spans (it meets at
+// most wnx + 1 of them at a time), so that the columns on its two sides,
+// numbered modulo ncx, are never adjacent.
+constexpr int kSpareColumns = 3;
+// Drifting grid: relative margin of the columns over the largest diameter
+// (covers the round-off of xi up to drift * t ~ 1e9 diameters).
+constexpr double kDriftCellMargin = 1e-6;
+// Drifting grid: a disk near a wall or vertex looks up the fixed grid's
+// items again after travelling this far (diameters). Larger: fewer
+// look-ups, longer lists.
+constexpr double kWallLookAhead = 8.0;
+// Drifting grid: side of the fixed look-up grid's cells (diameters, at
+// least the cell side). Larger: a smaller table (fewer cache misses per
+// look-up: 16 bytes a cell), longer lists near the walls.
+constexpr double kSurfaceCell = 6.0;
 
 double point_rect_distance(Vec2 q, double x0, double y0, double x1, double y1) {
   const double dx = std::max({x0 - q.x, 0.0, q.x - x1});
@@ -110,9 +125,18 @@ void Engine::Impl::init(EngineConfig c) {
   }
   lx = cfg.xmax - cfg.xmin;
   ly = cfg.ymax - cfg.ymin;
-  const double cell = std::max(max_diameter, cfg.min_cell);
+  drifting = cfg.grid_speed != 0.0;
+  drift = cfg.grid_speed;
+  if (!std::isfinite(drift)) bad("grid_speed must be finite");
+  if (drifting && periodic_x) bad("a drifting cell grid (grid_speed) needs non-periodic x faces");
+  // A drifting column's faces are at k w in xi = x - xmin - drift t, whose
+  // round-off grows with t (~1e-12 d at drift t ~ 1e4): columns a hair
+  // wider than a diameter keep every touching pair in adjacent columns.
+  const double cell =
+      std::max(max_diameter * (drifting ? 1.0 + kDriftCellMargin : 1.0), cfg.min_cell);
   // Checked as doubles, before the counts are cast to int.
-  const double cells_x = std::floor(lx / cell), cells_y = std::floor(ly / cell);
+  const double cells_x = std::floor(lx / cell) + (drifting ? kSpareColumns : 0),
+               cells_y = std::floor(ly / cell);
   if (std::max(cells_x, cells_y) > kMaxCellsPerSide) {
     char count[32];
     std::snprintf(count, sizeof count, "%.0f", std::max(cells_x, cells_y));
@@ -124,15 +148,25 @@ void Engine::Impl::init(EngineConfig c) {
   ncy = std::max(1, static_cast<int>(cells_y));
   if ((periodic_x && ncx < 3) || (periodic_y && ncy < 3))
     bad("a periodic side must be at least 3 largest diameters long");
-  cw = lx / ncx;
+  const int columns = drifting ? ncx - kSpareColumns : ncx;  // spanning the rectangle
+  cw = lx / columns;
   ch = ly / ncy;
+  // The fixed look-up grid of walls and vertices: the cell grid itself, or
+  // for a drifting grid coarse cells whose records stay in cache.
+  wnx =
+      drifting ? std::max(1, static_cast<int>(std::floor(lx / std::max(cell, kSurfaceCell)))) : ncx;
+  wny =
+      drifting ? std::max(1, static_cast<int>(std::floor(ly / std::max(cell, kSurfaceCell)))) : ncy;
+  inv_wcw = wnx / lx;
+  inv_wch = wny / ly;
+  inv_cw = 1.0 / cw;
+  inv_ncx = 1.0 / ncx;
+  wrap_x = periodic_x || drifting;
+  wrap_lx = periodic_x ? lx : 0.0;
   tiles_x = (static_cast<std::uint32_t>(ncx) + kTile - 1) / kTile;
   const std::uint32_t tiles_y = (static_cast<std::uint32_t>(ncy) + kTile - 1) / kTile;
   head.assign(static_cast<std::size_t>(tiles_x) * tiles_y * kTile * kTile, -1);
 
-  // Walls and vertices, registered in every cell a disk centre in which
-  // could touch them.
-  const double reach = 0.5 * max_diameter + kRegistrationSlack;
   for (const Wall& w : cfg.walls) {
     const Vec2 d = w.b - w.a;
     const double len = norm(d);
@@ -143,49 +177,72 @@ void Engine::Impl::init(EngineConfig c) {
   }
   for (const Vertex& v : cfg.vertices)
     if (v.restitution > 1.0) bad("vertex restitution must lie in [0, 1]");
-  auto register_all = [&](auto&& dist, std::size_t count, std::vector<std::int32_t>& start,
-                          std::vector<std::int32_t>& list) {
-    if (count == 0) return;
-    std::vector<std::vector<std::int32_t>> per(head.size());
-    for (std::size_t k = 0; k < count; ++k) {
-      // Bounding box of the item expanded by `reach`, clipped to the grid.
-      for (int cy = 0; cy < ncy; ++cy) {
-        const double y0 = cfg.ymin + cy * ch, y1 = cfg.ymin + (cy + 1) * ch;
-        if (!dist.y_ok(k, y0, y1, reach)) continue;
-        for (int cx = 0; cx < ncx; ++cx) {
-          const double x0 = cfg.xmin + cx * cw, x1 = cfg.xmin + (cx + 1) * cw;
-          if (dist(k, x0, y0, x1, y1) <= reach)
-            per[static_cast<std::size_t>(cy * ncx + cx)].push_back(static_cast<std::int32_t>(k));
-        }
-      }
+  register_surfaces();
+}
+
+// Walls and vertices, registered in every cell of the fixed grid a disk
+// centre in which could touch them (fixed cell grid), or could touch them
+// before travelling the cell's wall_clear (drifting grid).
+void Engine::Impl::register_surfaces() {
+  const std::size_t ncell = static_cast<std::size_t>(wnx) * static_cast<std::size_t>(wny);
+  const double wcw = lx / wnx, wch = ly / wny;
+  const double radius_max = 0.5 * max_diameter;
+  const auto cell_rect = [&](std::size_t c, double& x0, double& y0, double& x1, double& y1) {
+    const auto cx = static_cast<double>(c % static_cast<std::size_t>(wnx));
+    const auto cy = static_cast<double>(c / static_cast<std::size_t>(wnx));
+    x0 = cfg.xmin + cx * wcw;
+    x1 = cfg.xmin + (cx + 1) * wcw;
+    y0 = cfg.ymin + cy * wch;
+    y1 = cfg.ymin + (cy + 1) * wch;
+  };
+  const auto wall_distance = [&](std::size_t k, double x0, double y0, double x1, double y1) {
+    return segment_rect_distance(cfg.walls[k].a, cfg.walls[k].b, x0, y0, x1, y1);
+  };
+  const auto vertex_distance = [&](std::size_t k, double x0, double y0, double x1, double y1) {
+    return point_rect_distance(cfg.vertices[k].p, x0, y0, x1, y1);
+  };
+  // Reach from each cell: the largest radius (fixed grid), plus the
+  // distance a disk may travel before it must look again (drifting grid):
+  // at least kWallLookAhead, and in cells far from every item the whole
+  // clearance, so that a disk in the open stream rarely looks at all.
+  std::vector<double> reach(ncell, radius_max + kRegistrationSlack);
+  surfaces.clear();
+  if (cfg.walls.empty() && cfg.vertices.empty()) return;
+  surfaces.assign(ncell + 1, detail::SurfaceCell{});
+  if (drifting) {
+    for (std::size_t c = 0; c < ncell; ++c) {
+      double x0, y0, x1, y1;
+      cell_rect(c, x0, y0, x1, y1);
+      double nearest = detail::kNever;
+      for (std::size_t k = 0; k < cfg.walls.size(); ++k)
+        nearest = std::min(nearest, wall_distance(k, x0, y0, x1, y1));
+      for (std::size_t k = 0; k < cfg.vertices.size(); ++k)
+        nearest = std::min(nearest, vertex_distance(k, x0, y0, x1, y1));
+      // The nearest item itself lies beyond the reach unless within kWallLookAhead.
+      const double clear =
+          std::max(kWallLookAhead, nearest - radius_max - 2.0 * kRegistrationSlack);
+      float stored = static_cast<float>(clear);
+      if (static_cast<double>(stored) > clear)
+        stored = std::nextafter(stored, 0.0f);  // never beyond
+      surfaces[c].clear = stored;
+      reach[c] = radius_max + static_cast<double>(stored) + kRegistrationSlack;
     }
-    start.assign(head.size() + 1, 0);
-    for (std::size_t c2 = 0; c2 < head.size(); ++c2)
-      start[c2 + 1] = start[c2] + static_cast<std::int32_t>(per[c2].size());
+  }
+  const auto register_all = [&](auto&& dist, std::size_t count,
+                                std::int32_t detail::SurfaceCell::*first,
+                                std::vector<std::int32_t>& list) {
     list.clear();
-    for (const auto& v : per) list.insert(list.end(), v.begin(), v.end());
+    for (std::size_t c = 0; c < ncell; ++c) {
+      surfaces[c].*first = static_cast<std::int32_t>(list.size());
+      double x0, y0, x1, y1;
+      cell_rect(c, x0, y0, x1, y1);
+      for (std::size_t k = 0; k < count; ++k)
+        if (dist(k, x0, y0, x1, y1) <= reach[c]) list.push_back(static_cast<std::int32_t>(k));
+    }
+    surfaces[ncell].*first = static_cast<std::int32_t>(list.size());
   };
-  struct WallDist {
-    const std::vector<Wall>* w;
-    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
-      return segment_rect_distance((*w)[k].a, (*w)[k].b, x0, y0, x1, y1);
-    }
-    bool y_ok(std::size_t k, double y0, double y1, double r) const {
-      const double lo = std::min((*w)[k].a.y, (*w)[k].b.y) - r, hi = std::max((*w)[k].a.y, (*w)[k].b.y) + r;
-      return y1 >= lo && y0 <= hi;
-    }
-  };
-  struct VertexDist {
-    const std::vector<Vertex>* v;
-    double operator()(std::size_t k, double x0, double y0, double x1, double y1) const {
-      return point_rect_distance((*v)[k].p, x0, y0, x1, y1);
-    }
-    bool y_ok(std::size_t k, double y0, double y1, double r) const {
-      return y1 >= (*v)[k].p.y - r && y0 <= (*v)[k].p.y + r;
-    }
-  };
-  register_all(WallDist{&cfg.walls}, cfg.walls.size(), wall_start, wall_list);
-  register_all(VertexDist{&cfg.vertices}, cfg.vertices.size(), vertex_start, vertex_list);
+  register_all(wall_distance, cfg.walls.size(), &detail::SurfaceCell::walls, wall_list);
+  register_all(vertex_distance, cfg.vertices.size(), &detail::SurfaceCell::vertices, vertex_list);
 }
 
 // Does a disk of `species` at r overlap (deeper than tol) any disk, wall or
@@ -208,15 +265,14 @@ bool Engine::Impl::overlaps(Vec2 r, int species, double tol, std::int32_t skip) 
       if ((r.x - ox) * (r.x - ox) + (r.y - oy) * (r.y - oy) < sig * sig) return true;
     }
   }
-  const std::size_t lc = linear_cell(c);
-  if (!wall_start.empty())
-    for (std::int32_t k = wall_start[lc]; k < wall_start[lc + 1]; ++k) {
-      const Wall& w = cfg.walls[wall_list[k]];
-      if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
-    }
-  if (!vertex_start.empty())
-    for (std::int32_t k = vertex_start[lc]; k < vertex_start[lc + 1]; ++k)
-      if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
+  if (surfaces.empty()) return false;
+  const std::size_t lc = drifting ? wall_cell(r.x, r.y) : linear_cell(c);
+  for (std::int32_t k = surfaces[lc].walls; k < surfaces[lc + 1].walls; ++k) {
+    const Wall& w = cfg.walls[wall_list[k]];
+    if (point_segment_distance(r, w.a, w.b) < rad - tol) return true;
+  }
+  for (std::int32_t k = surfaces[lc].vertices; k < surfaces[lc + 1].vertices; ++k)
+    if (norm(r - cfg.vertices[vertex_list[k]].p) < rad - tol) return true;
   return false;
 }
 
@@ -231,13 +287,14 @@ std::int32_t Engine::Impl::add_slot(Vec2 r, Vec2 v, int species) {
     i = static_cast<std::int32_t>(p.size());
     p.push_back({});
     s.push_back({});
+    if (drifting) timer_t.push_back(detail::kNever);
   }
   p[i] = Particle{r.x, r.y, v.x, v.y, now, -detail::kNever, count, -1, 0,
                   static_cast<std::uint16_t>(species), 1};
   // The version carries over, so that calendar entries of the slot's
   // previous occupant stay stale.
   const std::uint32_t qver = s[i].qver + 1;
-  s[i] = detail::Slot{detail::kNever, detail::kNever, -1, 0, detail::EventType::none, 0, qver};
+  s[i] = detail::Slot{detail::kNever, detail::kNever, -1, 0, detail::EventType::none, 0, 0, qver};
   cell_insert(i, cell_of(r.x, r.y));
   integrate_energy();
   energy += 0.5 * mass[static_cast<std::size_t>(species)] * norm2(v);

@@ -246,9 +246,12 @@ nlohmann::json run_parametric(const ParametricOptions& o) {
   scene::log_line("parametric: " + std::to_string(cpu.seconds()) + " CPU s spent", true);
   const std::string src_docs = std::string(PIPELINE_SOURCE_DIR) + "/../docs";
   const std::string page = o.docs_page.empty() ? src_docs + "/parametric.md" : o.docs_page;
-  const std::string figs = !o.figures_dir.empty()
-                               ? o.figures_dir
-                               : (page == "-" ? o.out_dir : src_docs + "/figures/parametric");
+  // Figures go beside the page they are linked from, so a page written
+  // elsewhere never overwrites the repository's figures.
+  const std::string figs =
+      !o.figures_dir.empty()
+          ? o.figures_dir
+          : (page == "-" ? o.out_dir : (fs::path(page).parent_path() / "figures" / "parametric").string());
   write_parametric_outputs(rows, panels, cost, o.out_dir, figs, page);
   if (scene::interrupted())
     throw scene::RunError(

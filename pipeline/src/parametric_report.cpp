@@ -11,6 +11,7 @@
 #include "json_fields.hpp"
 #include "pipeline/parametric.hpp"
 #include "pipeline/plot.hpp"
+#include "pipeline/studies.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/gnuplot.hpp"
 #include "scene/io.hpp"
@@ -554,6 +555,33 @@ std::vector<Crossing> calibration_crossings(const Json& rows) {
   return out;
 }
 
+// The e(M[, theta]) fit trained on this study's crossings, as
+// `pipeline calibrate --from-points` makes it; its table goes to out_dir,
+// never over the shipped one.
+std::string training_section(const std::string& out_dir) {
+  std::ostringstream md;
+  md << "## Training the calibration on these points\n\n"
+     << "`pipeline calibrate --from-points docs/figures/parametric/parametric_calibration.json --table FILE` "
+        "fits e(M[, theta]) to the study's `crossings` (the case-study wedges M3/10, M4/15, M5/20 are left "
+        "out, by the command as well as by the study) without running anything, with the same models and "
+        "leave-one-out choice as `pipeline calibrate`. ";
+  try {
+    const Json fit = calibrate_from_points(out_dir + "/parametric_calibration.json",
+                                           out_dir + "/calibration_from_points.yaml");
+    md << "On this study (" << fit["points"].get<std::size_t>() << " crossings) it chooses "
+       << fit["model"].get<std::string>() << " (coefficients";
+    for (const auto& c : fit["coefficients"]) md << " " << fmt(c.get<double>(), 3);
+    md << "; leave-one-out RMS of e " << fmt(fit["loo_rms"].get<double>(), 2) << "). ";
+  } catch (const std::exception& e) {
+    md << "On this study no fit: " << e.what() << ". ";
+  }
+  md << "Those crossings are measured with the study's granular settings (fewer disks, shorter averaging "
+        "than the scene defaults), and the e that matches air depends on the granular resolution, so such "
+        "a table serves scenes run with the study's settings only; the shipped `pipeline/calibration.yaml` "
+        "comes from `pipeline calibrate` at the defaults (docs/calibration.md).\n";
+  return md.str();
+}
+
 void write_parametric_outputs(const Json& rows, const std::vector<ParametricPanel>& panels,
                               const Json& cost, const std::string& out_dir,
                               const std::string& figures_dir, const std::string& docs_page) {
@@ -647,7 +675,8 @@ void write_parametric_outputs(const Json& rows, const std::vector<ParametricPane
      << "Linear interpolation in e between the two runs that bracket the gas angle; the 95% "
         "half-width propagates "
         "both runs' intervals.\n\n"
-     << calibration_panel(crossings, figures_dir + "/calibration_surface.png") << "\n";
+     << calibration_panel(crossings, figures_dir + "/calibration_surface.png") << "\n"
+     << training_section(out_dir) << "\n";
   if (docs_page != "-") scene::write_file_atomic(docs_page, md.str());
   scene::write_file_atomic(out_dir + "/parametric.md", md.str());
 }

@@ -12,6 +12,7 @@
 #include "meshgen/mesh.hpp"
 #include "scene/body.hpp"
 #include "scene/io.hpp"
+#include "msh_file.hpp"
 #include "shock_fixtures.hpp"
 
 namespace {
@@ -43,50 +44,14 @@ struct WallCell {
 
 // The wall cells of a gmsh 2.2 file (one layer of hexahedra and prisms).
 std::vector<WallCell> wall_cells(const std::string& msh) {
-  std::istringstream is(scene::read_file(msh));
-  std::string line;
-  int body_tag = -1;
-  std::vector<scene::Vec2> nodes;
+  const meshgen_test::MshFile f = meshgen_test::read_msh(msh);
+  const auto& nodes = f.nodes;
+  const int body_tag = f.physical.count("body") ? f.physical.at("body") : -1;
   std::set<std::size_t> on_body;
   std::vector<std::vector<std::size_t>> volumes;
-  while (std::getline(is, line)) {
-    if (line == "$PhysicalNames") {
-      int n = 0;
-      is >> n;
-      for (int k = 0; k < n; ++k) {
-        int dim = 0, tag = 0;
-        std::string name;
-        is >> dim >> tag >> name;
-        if (name == "\"body\"") body_tag = tag;
-      }
-    } else if (line == "$Nodes") {
-      std::size_t n = 0;
-      is >> n;
-      nodes.resize(n + 1);
-      for (std::size_t k = 0; k < n; ++k) {
-        std::size_t id = 0;
-        double x = 0, y = 0, z = 0;
-        is >> id >> x >> y >> z;
-        if (id >= nodes.size()) nodes.resize(id + 1);
-        nodes[id] = {x, y};
-      }
-    } else if (line == "$Elements") {
-      std::size_t n = 0;
-      is >> n;
-      for (std::size_t k = 0; k < n; ++k) {
-        int id = 0, type = 0, ntags = 0;
-        is >> id >> type >> ntags;
-        std::vector<int> tags(static_cast<std::size_t>(ntags));
-        for (int& t : tags) is >> t;
-        const int per = type == 5 ? 8 : type == 6 ? 6 : type == 3 ? 4 : type == 2 ? 3 : type == 1 ? 2 : 1;
-        std::vector<std::size_t> v(static_cast<std::size_t>(per));
-        for (std::size_t& node : v) is >> node;
-        // 2.2: the first tag is the physical group.
-        if (type == 3 && !tags.empty() && tags[0] == body_tag) on_body.insert(v.begin(), v.end());
-        // Extruded hexahedra and prisms list their bottom face first.
-        if (type == 5 || type == 6) volumes.emplace_back(v.begin(), v.begin() + per / 2);
-      }
-    }
+  for (const auto& e : f.elements) {
+    if (e.type == 3 && !e.tags.empty() && e.tags[0] == body_tag) on_body.insert(e.nodes.begin(), e.nodes.end());
+    if (meshgen_test::is_volume(e)) volumes.emplace_back(e.nodes.begin(), e.nodes.begin() + e.nodes.size() / 2);
   }
   EXPECT_GE(body_tag, 0) << msh << ": no physical surface \"body\"";
   std::vector<WallCell> out;

@@ -14,6 +14,7 @@
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "msh_file.hpp"
 #include "shock_fixtures.hpp"
 
 namespace {
@@ -44,44 +45,13 @@ scene::Lattice halves(const scene::Domain& d, double x_split) {
 
 // Centroids (x, y) of the volume cells of a gmsh 2.2 ASCII file (hexahedra, prisms).
 std::vector<scene::Vec2> cell_centroids(const std::string& msh) {
-  std::istringstream is(scene::read_file(msh));
-  std::string line;
-  std::vector<scene::Vec2> nodes;
+  const meshgen_test::MshFile f = meshgen_test::read_msh(msh);
   std::vector<scene::Vec2> out;
-  while (std::getline(is, line)) {
-    if (line == "$Nodes") {
-      std::size_t n = 0;
-      is >> n;
-      nodes.resize(n + 1);
-      for (std::size_t k = 0; k < n; ++k) {
-        std::size_t id = 0;
-        double x = 0, y = 0, z = 0;
-        is >> id >> x >> y >> z;
-        if (id >= nodes.size()) nodes.resize(id + 1);
-        nodes[id] = {x, y};
-      }
-    } else if (line == "$Elements") {
-      std::size_t n = 0;
-      is >> n;
-      for (std::size_t k = 0; k < n; ++k) {
-        int id = 0, type = 0, ntags = 0;
-        is >> id >> type >> ntags;
-        for (int t = 0; t < ntags; ++t) is >> id;
-        const int per = type == 5   ? 8
-                        : type == 6 ? 6
-                        : type == 3 ? 4
-                        : type == 2 ? 3
-                        : type == 1 ? 2
-                                    : 1;
-        scene::Vec2 c;
-        for (int v = 0; v < per; ++v) {
-          std::size_t node = 0;
-          is >> node;
-          c += nodes.at(node);
-        }
-        if (type == 5 || type == 6) out.push_back(c / per);
-      }
-    }
+  for (const auto& e : f.elements) {
+    if (!meshgen_test::is_volume(e)) continue;
+    scene::Vec2 c;
+    for (const std::size_t node : e.nodes) c += f.nodes.at(node);
+    out.push_back(c / static_cast<double>(e.nodes.size()));
   }
   return out;
 }

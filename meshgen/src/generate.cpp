@@ -171,16 +171,10 @@ void check_estimate(const std::string& where, double estimate, double h_min, dou
                           fmt_g(kMaxCells) + "; raise mesh.h_min / mesh.h_max or lower the target");
 }
 
-// Cell size on the body surface (scene coordinates). The wall is where the
-// flow is turned: the slip condition sets the flow direction that fixes an
-// attached shock's angle from the apex on and a bow shock's stand-off from
-// the stagnation region, so by default it is resolved like the shock, at
-// h_min (as the uniform grid of that h_min resolves it), and grows from
-// there at the grid's growth rate. An explicit h_body (request, then scene)
-// overrides it, within [h_min, h_max].
+// Body cell size of a request: the request's h_body, then the scene's.
 double body_size(const MeshRequest& r, const scene::MeshParams& mp, const SizeParams& base, double L) {
   const std::optional<double> h_body = r.h_body ? r.h_body : mp.h_body;
-  return h_body ? std::clamp(*h_body * L, base.h_min, base.h_max) : base.h_min;
+  return body_cell_size(h_body ? std::optional<double>(*h_body * L) : std::nullopt, base.h_min, base.h_max);
 }
 
 // The plan of a request, refused (InputError) before anything is written

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "meshgen/size_field.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
@@ -104,7 +105,8 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
       // mesh.h_body says otherwise): per unit wall length its layers hold
       // int (1/h^2 - 1/H^2) dd = (1/h_body - 1/H)/(growth - 1) - (H - h_body)/((growth - 1) H^2)
       // cells beyond the far field's (the shock band overlaps them near an apex: an overestimate).
-      const double h_body = std::clamp(s.mesh.h_body ? *s.mesh.h_body * L * level : h, h, H);
+      const double h_body = meshgen::body_cell_size(
+          s.mesh.h_body ? std::optional<double>(*s.mesh.h_body * L * level) : std::nullopt, h, H);
       const double slope = s.mesh.growth - 1.0;
       const double at_body = body * ((1.0 / h_body - 1.0 / H) / slope - (H - h_body) / (slope * H * H));
       const double cells = kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + at_body + area / (H * H));

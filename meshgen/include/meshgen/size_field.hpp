@@ -15,7 +15,9 @@
 // with h_lattice interpolated bilinearly between cell centres (and held at
 // the outermost centres beyond them): the same body rule as the clustered
 // grids, whatever made the lattice.
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "meshgen/fluid_region.hpp"
@@ -40,6 +42,17 @@ std::vector<ShockRun> clip_shock(const std::vector<scene::Vec2>& curve, const st
 struct SizeParams {
   double h_min = 0.01, h_max = 0.05, h_body = 0.02, growth = 1.2;
 };
+
+// Cell size on the body surface, scene units. The wall is where the flow is
+// turned: the slip condition sets the flow direction that fixes an attached
+// shock's angle from the apex on and a bow shock's stand-off from the
+// stagnation region, so by default it is resolved like the shock, at h_min
+// (as the uniform grid of that h_min resolves it), and grows from there at
+// the grid's growth rate. An explicit h_body overrides it, within
+// [h_min, h_max].
+inline double body_cell_size(std::optional<double> h_body, double h_min, double h_max) {
+  return h_body ? std::clamp(*h_body, h_min, h_max) : h_min;
+}
 
 // Segments in a bucket grid, for nearest-distance queries up to a cut-off.
 class SegmentIndex {

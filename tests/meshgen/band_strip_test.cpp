@@ -59,9 +59,11 @@ TEST(BandStrip, StraightShockGetsTheFullAspect) {
     EXPECT_GE(len, kEndStretch * a * kHMin);
   }
   // Rows: h_min or thinner across the band (3 h_min each side), growth rows beyond.
-  for (std::size_t j = 0; j + 1 < st.rows.size(); ++j)
-    if (std::abs(st.rows[j]) < 3 * kHMin + kExact && std::abs(st.rows[j + 1]) < 3 * kHMin + kExact)
+  for (std::size_t j = 0; j + 1 < st.rows.size(); ++j) {
+    if (std::abs(st.rows[j]) < 3 * kHMin + kExact && std::abs(st.rows[j + 1]) < 3 * kHMin + kExact) {
       EXPECT_LE(st.rows[j + 1] - st.rows[j], kHMin * (1 + kExact));
+    }
+  }
   EXPECT_GT(st.rows.back(), 3 * kHMin);
   // Columns are square to the shock.
   const Vec2 t = scene::normalized(Vec2{2.5, 1.5});

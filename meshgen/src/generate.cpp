@@ -31,10 +31,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Band half-width without band_width or ci, and its floor, in cells of h_min:
-// the band always holds a few fine cells across even for a sure prediction.
-constexpr double kDefaultBandCells = 3.0;
-constexpr double kMinBandCells = 2.0;
 // Target cell count: accepted within kTargetTolerance (10%: a user asking for 100k cells gets 90-110k); a
 // retry is made beyond kTargetRetry, up to kMaxTargetAttempts meshes.
 constexpr double kTargetTolerance = 0.10;
@@ -112,10 +108,9 @@ struct Plan {
     z.params.h_body *= scale;
     z.uniform_h = uniform_h * scale;
     std::vector<double> w(curve.size());
-    const double floor = kMinBandCells * z.params.h_min;
-    const double def = band_width.value_or(kDefaultBandCells * z.params.h_min);
+    const double base_width = band_half_width(band_width, z.params.h_min);
     for (std::size_t i = 0; i < curve.size(); ++i) {
-      double wi = std::max(def, floor);
+      double wi = base_width;
       if (i < ci.size() && std::isfinite(ci[i])) wi = std::max(wi, ci[i]);
       w[i] = wi;
     }

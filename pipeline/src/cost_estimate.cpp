@@ -90,7 +90,8 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
   RunEstimate e;
   const double L = scene::body_length(*s.body);
   const double area = fluid_area(s), shock = shock_length(s), body = body_surface_length(s);
-  const double band = s.mesh.band_width.value_or(0.0) * L;
+  const std::optional<double> band =
+      s.mesh.band_width ? std::optional<double>(*s.mesh.band_width * L) : std::nullopt;
   for (const double level : s.pipeline.levels) {
     const double h = s.mesh.h_min * L * level;
     e.grids.push_back(grid(s, level_name("uniform", level), kCellsPerH2 * area / (h * h), h));
@@ -98,8 +99,7 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
   if (predictor != "none")
     for (const double level : s.pipeline.levels) {
       const double h = s.mesh.h_min * L * level, H = s.mesh.h_max * L * level;
-      constexpr double kDefaultBandCells = 3.0;
-      const double w = std::max(band, kDefaultBandCells * h);
+      const double w = meshgen::band_half_width(band, h);
       const double graded = 2.0 * shock / (h * (1.0 - 1.0 / s.mesh.growth));
       // meshgen's body rule, h = h_body + (growth - 1) d from the wall (h_body = h_min unless
       // mesh.h_body says otherwise): per unit wall length its layers hold

@@ -54,6 +54,16 @@ inline double body_cell_size(std::optional<double> h_body, double h_min, double 
   return h_body ? std::clamp(*h_body, h_min, h_max) : h_min;
 }
 
+// Half-width of the shock band where the prediction states no interval
+// (band_width if given, else kDefaultBandCells h_min), never under
+// kMinBandCells h_min: even a sure prediction gets a few fine cells across.
+// A stated 95% half-width widens it further point by point (meshgen's plan).
+inline double band_half_width(std::optional<double> band_width, double h_min) {
+  constexpr double kDefaultBandCells = 3.0;
+  constexpr double kMinBandCells = 2.0;
+  return std::max(band_width.value_or(kDefaultBandCells * h_min), kMinBandCells * h_min);
+}
+
 // Segments in a bucket grid, for nearest-distance queries up to a cut-off.
 class SegmentIndex {
  public:

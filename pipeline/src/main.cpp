@@ -16,6 +16,7 @@
 #include "scene/cli.hpp"
 #include "scene/cli_parse.hpp"
 #include "scene/errors.hpp"
+#include "scene/progress.hpp"
 #include "scene/scene.hpp"
 #include "scene/staging.hpp"
 
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
         throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " + s.pipeline.calibration +
                                 " not found");
       (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
+      if (const auto sized = pipeline::fit_default_sizes_to_budget(s, predictor)) scene::log_line(*sized, true);
       const auto estimate = pipeline::estimate_run(s, predictor);
       if (dry_run) {
         std::cout << scene::to_yaml(s) << "\n" << pipeline::format_estimate(estimate, s.pipeline.budget_cpu_seconds);

@@ -4,6 +4,7 @@ namespace scene {
 
 MeshParams parse_mesh(Section& s) {
   MeshParams p;
+  p.sizes_default = !s.has("h_min") && !s.has("h_max");
   p.h_min = s.number("h_min", p.h_min, positive());
   p.h_max = s.number("h_max", p.h_max, positive());
   p.band_width = s.opt_number("band_width", positive());

@@ -203,6 +203,33 @@ TEST(CostEstimate, UniformWedgeGridWithinTheStatedAccuracy) {
   EXPECT_NO_THROW(pipeline::check_budget(s, e, true));
 }
 
+// A scene that leaves the cell sizes to the defaults gets sizes that fit its
+// CPU budget (a default disc is estimated at tens of CPU hours); a scene that
+// states either size keeps it and meets the budget check instead.
+TEST(CostEstimate, DefaultSizesAreCoarsenedToTheBudget) {
+  const std::string disc = "name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 3}\n";
+  scene::Scene s = scene::parse_scene(disc);
+  ASSERT_TRUE(s.mesh.sizes_default);
+  const scene::MeshParams before = s.mesh;
+  ASSERT_GT(pipeline::estimate_run(s, "granular").total_cpu_seconds, s.pipeline.budget_cpu_seconds);
+  const auto line = pipeline::fit_default_sizes_to_budget(s, "granular");
+  ASSERT_TRUE(line.has_value());
+  EXPECT_NE(line->find("pipeline.budget_cpu_seconds"), std::string::npos) << *line;
+  EXPECT_LE(pipeline::estimate_run(s, "granular").total_cpu_seconds, s.pipeline.budget_cpu_seconds);
+  // One factor for both sizes (to the 2 significant figures they are rounded to).
+  constexpr double kRounding = 0.1;
+  EXPECT_NEAR((s.mesh.h_max / s.mesh.h_min) / (before.h_max / before.h_min), 1.0, kRounding);
+  // The finest that fits: 10% finer would not.
+  scene::Scene finer = s;
+  finer.mesh.h_min /= 1.1, finer.mesh.h_max /= 1.1;
+  EXPECT_GT(pipeline::estimate_run(finer, "granular").total_cpu_seconds, s.pipeline.budget_cpu_seconds);
+
+  scene::Scene given = scene::parse_scene(disc + "mesh: {h_min: 0.01}\n");
+  EXPECT_FALSE(given.mesh.sizes_default);
+  EXPECT_FALSE(pipeline::fit_default_sizes_to_budget(given, "granular").has_value());
+  EXPECT_EQ(given.mesh.h_min, 0.01);
+}
+
 // The clustered grids' estimate follows meshgen's body rule: a wall at
 // h_min (the default) costs more cells than one left at h_max.
 TEST(CostEstimate, ClusteredEstimateCountsTheBodyLayers) {

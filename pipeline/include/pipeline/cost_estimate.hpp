@@ -2,6 +2,7 @@
 // What a `pipeline run` will cost, before it runs: every grid's cells,
 // solver steps and CPU seconds from a stated model (docs/verdict.md,
 // "Sizing a run"), so a run that would take hours says so first.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,13 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor);
 
 // The table `--dry-run` prints.
 std::string format_estimate(const RunEstimate& e, double budget_cpu_seconds);
+
+// When the scene gives neither mesh.h_min nor mesh.h_max and the defaults'
+// estimate exceeds pipeline.budget_cpu_seconds, coarsens both by one factor
+// (at most kMaxCoarsening, sizes rounded to 2 significant figures) to the
+// finest sizes whose estimate fits. Returns the line saying what it chose,
+// or nothing when the scene keeps its sizes.
+std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s, const std::string& predictor);
 
 // InputError when the estimate exceeds the budget, naming both and the way out.
 void check_budget(const scene::Scene& s, const RunEstimate& e, bool force_budget);

@@ -93,6 +93,25 @@ TEST(FlowPrecision, AChangeOfQuantityRestartsTheCount) {
   EXPECT_EQ(*calls, 3);
 }
 
+TEST(FlowPrecision, StopsWhenTheIntervalNoLongerShrinks) {
+  // An interval that stays put: an impossible target is not averaged to
+  // max_averaging; the run stops at the second check that doubled its time
+  // without narrowing (2.5 flow-through times, checks at 1, 1.5, 2, 2.5).
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.max_averaging = 8.0;
+  granular::PrecisionGoal g;
+  g.target = 1e-9;
+  g.measure = [](const scene::Lattice&) {
+    granular::PrecisionMeasure m;
+    m.half_width = 0.05;
+    m.quantity = "shock_angle";
+    return m;
+  };
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "plateau");
+  EXPECT_NEAR(r.summary["averaging_flow_throughs"].get<double>(), 2.5, kFlowThroughTol);
+}
+
 TEST(FlowPrecision, StopsAtTheBudgetOnAnImpossibleTarget) {
   // The first chunk always runs; a budget already spent then stops it.
   scene::Scene s = scene::parse_scene(kSmallWedge);

@@ -1,7 +1,7 @@
 # Flow tests (supersonic stream past a body, fields, CLI). Fast ones run in
 # a few seconds each on small bodies; the shock-angle check is `slow`.
 add_stage_test(NAME granular_flow_tests PREFIX granular
-  SOURCES flow_setup_test.cpp flow_fields_test.cpp flow_steady_state_test.cpp
+  SOURCES flow_setup_test.cpp flow_fields_test.cpp flow_steady_state_test.cpp precision_stop_test.cpp
   LIBS granular_core
   LABELS fast TIMEOUT 60)
 # The steady-state rule is private to granular_core (src/flow).

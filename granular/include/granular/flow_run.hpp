@@ -60,7 +60,8 @@ struct PrecisionGoal {
 // The averaging stops at the first of (summary.stopped_by): "precision"
 // (goal active and met by two consecutive checks with the same quantity;
 // checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
-// "budget" (granular.cpu_budget: the next chunk would overrun it at the
+// "plateau" (the interval stopped shrinking with averaging time:
+// granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at the
 // last chunk's rate) and "averaging" (granular.max_averaging with a goal,
 // else granular.averaging). Every
 // replica keeps its simulation between chunks and snapshot times count from

@@ -13,6 +13,7 @@
 #include "granular/flow_fields.hpp"
 #include "granular/flow_replica.hpp"
 #include "granular/flow_setup.hpp"
+#include "granular/precision_stop.hpp"
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
@@ -282,6 +283,7 @@ struct AveragingOutcome {
   std::string stopped_by;
   nlohmann::json checks = nlohmann::json::array();
   PrecisionMeasure last;
+  std::vector<PrecisionCheck> history;
 };
 
 FlowResult fields_so_far(const ReplicaPool& pool, const FlowSetup& f,
@@ -352,8 +354,13 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
            {"quantity", out.last.quantity},
            {"cpu_seconds", cpu.seconds()},
            {"details", out.last.details}});
+      out.history.push_back({static_cast<double>(out.snapshots) * dt / tau, out.last.half_width, out.last.quantity});
       if (anyone(group, met(goal, previous, out.last))) {
         out.stopped_by = "precision";
+        break;
+      }
+      if (anyone(group, interval_plateaued(out.history))) {
+        out.stopped_by = "plateau";
         break;
       }
     }

@@ -1,0 +1,31 @@
+#pragma once
+// When precision on demand stops averaging: the goal met, or the shock's
+// interval no longer shrinking with averaging time.
+#include <string>
+#include <vector>
+
+namespace granular {
+
+// One precision check: averaging time so far (flow-through times), the
+// shock position's 95% half-width (body lengths; NaN when no shock was
+// found) and the quantity it came from ("shock_angle", "standoff").
+struct PrecisionCheck {
+  double flow_throughs = 0;
+  double half_width = 0;
+  std::string quantity;
+};
+
+// Statistical averaging narrows an interval as 1/sqrt(time): doubling the
+// time takes it to 0.71 of its width. An interval still above
+// kPlateauRatio of its width at half the time is held up by something
+// averaging does not reduce (the lattice's resolution of the shock, the fit
+// itself), so more averaging buys almost nothing.
+inline constexpr double kPlateauRatio = 0.9;
+
+// The last two checks each hold at least kPlateauRatio of the half-width of
+// the latest check at or before half their averaging time, all with the same
+// quantity and finite widths. Two, because one interval moves by 10-20%
+// from check to check.
+bool interval_plateaued(const std::vector<PrecisionCheck>& checks);
+
+}  // namespace granular

@@ -1,0 +1,30 @@
+#include "granular/precision_stop.hpp"
+
+#include <cmath>
+
+namespace granular {
+
+namespace {
+
+// Check i against the latest check at or before half its averaging time.
+bool stalled(const std::vector<PrecisionCheck>& checks, std::size_t i) {
+  const PrecisionCheck& now = checks[i];
+  if (!std::isfinite(now.half_width)) return false;
+  for (std::size_t j = i; j-- > 0;) {
+    const PrecisionCheck& then = checks[j];
+    if (then.flow_throughs > 0.5 * now.flow_throughs) continue;
+    return std::isfinite(then.half_width) && then.half_width > 0.0 && then.quantity == now.quantity &&
+           now.half_width >= kPlateauRatio * then.half_width;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool interval_plateaued(const std::vector<PrecisionCheck>& checks) {
+  const std::size_t n = checks.size();
+  return n >= 2 && checks[n - 1].quantity == checks[n - 2].quantity && stalled(checks, n - 1) &&
+         stalled(checks, n - 2);
+}
+
+}  // namespace granular

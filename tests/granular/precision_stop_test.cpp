@@ -1,0 +1,60 @@
+// The plateau rule of precision on demand on made-up check sequences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "granular/precision_stop.hpp"
+
+namespace {
+
+using granular::PrecisionCheck;
+
+// Checks at 1, 1.5, 2, ... flow-through times (the flow run's schedule).
+std::vector<PrecisionCheck> checks(double (*width)(double), int n, const char* quantity = "shock_angle") {
+  std::vector<PrecisionCheck> c;
+  for (int k = 0; k < n; ++k) {
+    const double t = 1.0 + 0.5 * k;
+    c.push_back({t, width(t), quantity});
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(PrecisionStop, StatisticalNarrowingNeverPlateaus) {
+  // 1/sqrt(t): doubling the time gives 0.71 of the width, below 0.9.
+  const auto c = checks([](double t) { return 0.1 / std::sqrt(t); }, 30);
+  for (std::size_t n = 1; n <= c.size(); ++n)
+    EXPECT_FALSE(granular::interval_plateaued({c.begin(), c.begin() + static_cast<long>(n)})) << n;
+}
+
+TEST(PrecisionStop, AFlatIntervalStopsAtTheSecondCheckThatDoubledItsTime) {
+  const auto c = checks([](double) { return 0.05; }, 6);
+  // At 2 (against 1) alone: one stalled check is not enough; at 2.5 (against 1) the second.
+  EXPECT_FALSE(granular::interval_plateaued({c.begin(), c.begin() + 3}));
+  EXPECT_TRUE(granular::interval_plateaued({c.begin(), c.begin() + 4}));
+}
+
+TEST(PrecisionStop, AFloorUnderStatisticalNoisePlateausOnceTheNoiseIsSmall) {
+  // sqrt(floor^2 + noise^2 / t): narrows at first, then stalls at the floor;
+  // the rule stops where noise^2 / t <= 0.31 floor^2 (t ~ 13 here), within 15%
+  // of the floor.
+  const auto c = checks([](double t) { return std::sqrt(0.01 * 0.01 + 0.02 * 0.02 / t); }, 60);
+  std::size_t stop = 0;
+  for (std::size_t n = 2; n <= c.size() && !stop; ++n)
+    if (granular::interval_plateaued({c.begin(), c.begin() + static_cast<long>(n)})) stop = n;
+  ASSERT_GT(stop, 0u);
+  const double t = c[stop - 1].flow_throughs;
+  EXPECT_GT(t, 4.0);   // not while the noise still dominates
+  EXPECT_LT(c[stop - 1].half_width, 1.15 * 0.01);
+}
+
+TEST(PrecisionStop, NeedsOneQuantityAndFiniteWidths) {
+  auto c = checks([](double) { return 0.05; }, 4);
+  c[0].quantity = "standoff";  // the check it is compared with is of another kind
+  EXPECT_FALSE(granular::interval_plateaued(c));
+  c = checks([](double) { return 0.05; }, 4);
+  c[3].half_width = std::nan("");
+  EXPECT_FALSE(granular::interval_plateaued(c));
+}

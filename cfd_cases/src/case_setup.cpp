@@ -1,5 +1,9 @@
 #include "case_setup.hpp"
 
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/stat.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -7,15 +11,11 @@
 #include <regex>
 #include <stdexcept>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-
-#include <fmt/format.h>
-
 #include "cfd/run_case.hpp"
 #include "foam_process.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 
 #ifndef CFD_TEMPLATE_SOURCE_DIR
@@ -38,7 +38,9 @@ constexpr double kFoamRR = 8314.47;
 // however soon after the start it comes.
 constexpr long kControlDictBackdateSeconds = 3600;
 
-std::string num(double v) { return fmt::format("{:.12g}", v); }
+std::string num(double v) {
+  return fmt::format("{:.12g}", v);
+}
 
 // Allrun is shell text that users run by hand: the bashrc path enters it
 // single-quoted, and the scene name (only inside a comment) on one line, so
@@ -73,7 +75,22 @@ bool attached_wedge(const scene::Scene& s) {
 
 bool start_at_rest(const scene::Scene& s) {
   if (s.cfd.start != "auto") return s.cfd.start == "rest";
-  return !attached_wedge(s);
+  return !attached_wedge(s) && s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
+}
+
+bool subsonic_outflow(const scene::Scene& s) {
+  return scene::post_shock_mach_at_outflow(s) < 1.0;
+}
+
+std::string far_field_pressure(const scene::Scene& s) {
+  if (!subsonic_outflow(s)) return "type zeroGradient;";
+  const Freestream f = freestream(s);
+  return fmt::format(
+      "type waveTransmissive; field p; phi phi; rho rho; psi thermo:psi; gamma {}; fieldInf {}; "
+      "lInf {}; "
+      "value uniform {};",
+      num(f.gamma), num(f.p), num(kFarFieldRelaxationLength * scene::body_length(*s.body)),
+      num(f.p));
 }
 
 std::string limiter(const scene::Scene& s) {
@@ -98,7 +115,8 @@ std::string template_dir() {
   if (!ec) c.push_back((exe.parent_path() / "../share/shockgrain/cfd_cases/templates").string());
   for (const auto& d : c)
     if (!d.empty() && fs::exists(fs::path(d) / "rhoCentralFoam/system/controlDict")) return d;
-  throw InputError("cfd case templates not found (set SHOCKGRAIN_CFD_TEMPLATES to cfd_cases/templates)");
+  throw InputError(
+      "cfd case templates not found (set SHOCKGRAIN_CFD_TEMPLATES to cfd_cases/templates)");
 }
 
 Freestream freestream(const scene::Scene& s) {
@@ -108,7 +126,8 @@ Freestream freestream(const scene::Scene& s) {
   return f;
 }
 
-std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
+std::string fill_placeholders(const std::string& text,
+                              const std::map<std::string, std::string>& values,
                               const std::string& origin) {
   std::string out = text;
   for (const auto& [k, v] : values) {
@@ -153,19 +172,23 @@ void check_patches(const Mesh2D& m, const std::string& mesh_dir) {
   static const std::vector<std::string> roles{"inlet", "outlet", "top", "bottom", "body"};
   bool has_body = false, has_inlet = false;
   for (const PatchInfo& p : m.patches) {
-    if (p.type == "empty" || p.type == "symmetryPlane" || p.type == "symmetry" || p.type == "processor") {
+    if (p.type == "empty" || p.type == "symmetryPlane" || p.type == "symmetry" ||
+        p.type == "processor") {
       if (p.name == "body" || p.name == "inlet")
-        throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name + "' has type " + p.type);
+        throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
+                         "' has type " + p.type);
       continue;
     }
     if (std::find(roles.begin(), roles.end(), p.name) == roles.end())
-      throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
-                       "' is not one of inlet, outlet, top, bottom, body (or an empty/symmetryPlane patch)");
+      throw InputError(
+          mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
+          "' is not one of inlet, outlet, top, bottom, body (or an empty/symmetryPlane patch)");
     has_body = has_body || p.name == "body";
     has_inlet = has_inlet || p.name == "inlet";
   }
   if (!has_body || !has_inlet)
-    throw InputError(mesh_dir + "/constant/polyMesh/boundary: the mesh needs patches 'inlet' and 'body'");
+    throw InputError(mesh_dir +
+                     "/constant/polyMesh/boundary: the mesh needs patches 'inlet' and 'body'");
 }
 
 void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
@@ -174,7 +197,9 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
   if (fs::exists(cd)) {
     const bool is_case = fs::exists(cd / "system/controlDict") || fs::is_empty(cd);
     if (!is_case)
-      throw InputError(case_dir + ": exists and is not an OpenFOAM case (no system/controlDict); not replacing it");
+      throw InputError(
+          case_dir +
+          ": exists and is not an OpenFOAM case (no system/controlDict); not replacing it");
     // Keep a mesh that lives inside the case directory itself.
     if (fs::equivalent(fs::path(mesh_dir), cd))
       throw InputError(case_dir + ": the mesh directory must differ from the case directory");
@@ -188,6 +213,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"T_INF", num(f.T)},
       {"MACH", num(f.mach)},
       {"U_INIT", start_at_rest(s) ? "0" : num(f.mach)},
+      {"FAR_FIELD_P", far_field_pressure(s)},
       {"MOL_WEIGHT", num(kFoamRR * f.gamma)},
       {"CP", num(1.0 / (f.gamma - 1.0))},
       {"END_TIME", num(cs.end_time)},
@@ -212,13 +238,16 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       fs::create_directories(cd / rel);
       continue;
     }
-    const std::string text = fill_placeholders(scene::read_file(e.path().string()), v, e.path().string());
+    const std::string text =
+        fill_placeholders(scene::read_file(e.path().string()), v, e.path().string());
     scene::write_file_atomic((cd / rel).string(), text);
-    if (rel == "Allrun") fs::permissions(cd / rel, fs::perms::owner_exec | fs::perms::group_exec,
-                                         fs::perm_options::add);
+    if (rel == "Allrun")
+      fs::permissions(cd / rel, fs::perms::owner_exec | fs::perms::group_exec,
+                      fs::perm_options::add);
   }
   scene::write_file_atomic((cd / "scene.yaml").string(), scene::to_yaml(s));
-  fs::copy(fs::path(mesh_dir) / "constant/polyMesh", cd / "constant/polyMesh", fs::copy_options::recursive);
+  fs::copy(fs::path(mesh_dir) / "constant/polyMesh", cd / "constant/polyMesh",
+           fs::copy_options::recursive);
   fs::copy(cd / "0.orig", cd / "0", fs::copy_options::recursive);
   backdate((cd / "system/controlDict").string());
 }

@@ -20,12 +20,12 @@ Freestream freestream(const scene::Scene& s);
 struct CaseSettings {
   int np = 1;
   bool lts = false;
-  double flow_through = 1.0;   // domain length / U
-  double dt_ref = 0.0;         // global time step of the free stream at maxCo on this mesh
-  double end_time = 0.0;       // body lengths / c
-  double write_interval = 0.0; // body lengths / c
-  long write_steps = 0;        // LTS: steps between written times
-  double lts_smoothing = 0.0;  // LTS: rDeltaTSmoothingCoeff (controlDict)
+  double flow_through = 1.0;    // domain length / U
+  double dt_ref = 0.0;          // global time step of the free stream at maxCo on this mesh
+  double end_time = 0.0;        // body lengths / c
+  double write_interval = 0.0;  // body lengths / c
+  long write_steps = 0;         // LTS: steps between written times
+  double lts_smoothing = 0.0;   // LTS: rDeltaTSmoothingCoeff (controlDict)
 };
 
 // rhoCentralFoam's rDeltaTSmoothingCoeff under LTS: a cell's local step may
@@ -39,8 +39,31 @@ struct CaseSettings {
 // (docs/bench_cfd.md); 0.2 was in between.
 inline constexpr double kLtsSmoothingCoeff = 1.0;
 
-// Whether the flow starts at rest (cfd.start, resolved for "auto").
+// Whether the flow starts at rest (cfd.start, resolved for "auto": blunt
+// bodies and detached wedges at rest, unless the free stream is below
+// scene::rest_start_min_mach, where the start at rest sends a shock out
+// through the inlet; then, like attached wedges, in the free stream).
 bool start_at_rest(const scene::Scene& s);
+
+// Far-field outflow boundaries (outlet, top, bottom) when the estimated flow
+// behind the shock at the outflow station is subsonic
+// (scene::post_shock_mach_at_outflow < 1): the pressure is then one incoming
+// characteristic, and extrapolating it (zeroGradient, right for supersonic
+// outflow) leaves its level free: on the Mach 1.3 disc the bow shock drifted
+// upstream without end. OpenFOAM's waveTransmissive lets outgoing waves
+// leave and relaxes the pressure to the free stream's over a length
+// kFarFieldRelaxationLength (docs/cfd_cases.md). Supersonic outflows keep
+// zeroGradient.
+bool subsonic_outflow(const scene::Scene& s);
+
+// waveTransmissive's lInf, in body lengths. With 13 (the domain length) the
+// Mach 1.3 disc's bow shock still drifted upstream after 25 flow-throughs;
+// with 1 it settled (standoff ~7 R, Billig 6.1 R) and the density change
+// fell below 5e-3 per flow-through (docs/reliability.md).
+inline constexpr double kFarFieldRelaxationLength = 1.0;
+
+// The pressure condition of the far-field boundaries as OpenFOAM entries.
+std::string far_field_pressure(const scene::Scene& s);
 // The reconstruction limiter (cfd.limiter, resolved for "auto").
 std::string limiter(const scene::Scene& s);
 // Whether the case uses local time stepping (cfd.local_time_stepping,
@@ -48,7 +71,8 @@ std::string limiter(const scene::Scene& s);
 bool local_time_stepping(const scene::Scene& s);
 
 // Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
-std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
+std::string fill_placeholders(const std::string& text,
+                              const std::map<std::string, std::string>& values,
                               const std::string& origin);
 
 // Largest stable global time step of the free stream on `m` at Courant

@@ -1,8 +1,10 @@
 #include "scene/body_traits.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "scene/body.hpp"
+#include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/units.hpp"
 
@@ -82,6 +84,33 @@ bool correlation_is_exact_shape(const BodySpec& b) {
       return false;
   }
   return false;
+}
+
+double post_shock_mach_at_outflow(const Scene& s) {
+  if (!s.body) throw InputError(s.source_file + ": scene has no body, so no outflow");
+  const double mach = s.freestream.mach, gamma = s.freestream.gamma;
+  if (const auto beta = attached_shock_beta(s))
+    return oblique_downstream_mach(mach, *beta, s.body->angle_deg * kDeg, gamma);
+  const BodyGeometry g = make_body(*s.body);
+  double x_nose = g.polyline.front().x, x_widest = x_nose, widest = 0;
+  for (const Vec2 p : g.polyline) {
+    x_nose = std::min(x_nose, p.x);
+    if (std::abs(p.y) > widest) {
+      widest = std::abs(p.y);
+      x_widest = p.x;
+    }
+  }
+  const double x_out = std::min(x_widest, scene_domain(s).xmax);
+  const double radius = correlation_nose_radius(*s.body);
+  const double vertex = x_nose - billig_standoff_cylinder(mach) * radius;
+  const double rc = billig_shock_radius_cylinder(mach) * radius;
+  const double y = billig_shock_y(mach, radius, x_out - vertex);
+  // Billig's hyperbola: dx/dy = (y/Rc) / sqrt(1 + (y tan(mu)/Rc)^2); the
+  // shock's angle to the stream is atan(dy/dx) (normal at the vertex).
+  const double tan_mu = std::tan(std::asin(1.0 / mach));
+  const double dx_dy = (y / rc) / std::sqrt(1.0 + std::pow(y * tan_mu / rc, 2));
+  const double sigma = std::atan2(1.0, dx_dy);
+  return oblique_downstream_mach(mach, sigma, oblique_deflection(mach, sigma, gamma), gamma);
 }
 
 }  // namespace scene

@@ -1,10 +1,11 @@
 // Reference gas dynamics against tabulated values (NACA 1135 and the verification card's figures).
+#include "scene/gasdynamics.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "scene/gasdynamics.hpp"
 #include "scene/units.hpp"
 
 namespace {
@@ -14,8 +15,11 @@ constexpr double kRatioTol = 0.0015;
 }  // namespace
 
 TEST(Gasdynamics, ThetaBetaMachCaseStudies) {
-  struct Case { double m, theta, beta, p; };
-  for (const Case c : {Case{3, 10, 27.38, 2.054}, Case{4, 15, 27.06, 3.697}, Case{5, 20, 29.80, 7.037}}) {
+  struct Case {
+    double m, theta, beta, p;
+  };
+  for (const Case c :
+       {Case{3, 10, 27.38, 2.054}, Case{4, 15, 27.06, 3.697}, Case{5, 20, 29.80, 7.037}}) {
     const auto b = scene::oblique_shock_beta(c.m, c.theta * kDeg, 1.4);
     ASSERT_TRUE(b.has_value());
     EXPECT_NEAR(*b / kDeg, c.beta, kAngleTolDeg + 0.005);
@@ -54,5 +58,25 @@ TEST(Gasdynamics, RayleighPitotTable) {
     EXPECT_NEAR(scene::rayleigh_pitot_ratio(m, 1.4), ratio, kTableRel * ratio) << "M = " << m;
   EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0, 1.4), 1.8929, 1e-4);
   // Continuous through M = 1 (the normal shock vanishes there).
-  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4), 1e-6);
+  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4),
+              1e-6);
+}
+
+TEST(Gasdynamics, RestStartMinMachIsWhereTheInflowShockStandsStill) {
+  // 2/sqrt(3 - gamma): 1.5811 for air. Check it against the shock relation
+  // it comes from: a shock of Mach Ms = M induces the velocity M/2.
+  constexpr double kRoundOff = 1e-12;
+  for (const double g : {1.4, 5.0 / 3.0, 1.1}) {
+    const double m = scene::rest_start_min_mach(g);
+    EXPECT_NEAR(2.0 / (g + 1.0) * (m - 1.0 / m), 0.5 * m, kRoundOff) << "gamma " << g;
+  }
+  EXPECT_NEAR(scene::rest_start_min_mach(1.4), std::sqrt(2.5), kRoundOff);
+}
+
+TEST(Gasdynamics, DeflectionInvertsTheWeakShockAngle) {
+  constexpr double kAngleTol = 1e-9;
+  const double beta = *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, beta, 1.4), 10 * kDeg, kAngleTol);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, std::numbers::pi / 2, 1.4), 0.0, kAngleTol);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, std::asin(1.0 / 3.0), 1.4), 0.0, kAngleTol);
 }

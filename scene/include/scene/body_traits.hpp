@@ -37,4 +37,15 @@ double correlation_nose_radius(const BodySpec& b);
 // True when that radius is the body's own nose radius (no approximation).
 bool correlation_is_exact_shape(const BodySpec& b);
 
+// Estimated Mach number just behind the shock where it crosses the outflow
+// station: the body's widest station (or the domain's outflow boundary, if
+// upstream of it; meshgen ends a body's grid there). Attached wedges: the
+// exact flow behind the oblique shock. Other bodies: Billig's cylinder shock
+// (standoff and hyperbola, nose radius correlation_nose_radius) at that
+// station, its local angle giving the oblique-shock state behind it. Below 1
+// the outflow boundary cuts the subsonic region behind the bow shock, where
+// an extrapolating (supersonic) outflow condition leaves the pressure
+// undetermined.
+double post_shock_mach_at_outflow(const Scene& s);
+
 }  // namespace scene

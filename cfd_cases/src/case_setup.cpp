@@ -75,11 +75,12 @@ bool attached_wedge(const scene::Scene& s) {
 
 bool start_at_rest(const scene::Scene& s) {
   if (s.cfd.start != "auto") return s.cfd.start == "rest";
-  return !attached_wedge(s) && s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
+  return s.body && scene::starts_at_rest(*s.body) &&
+         s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
 }
 
 bool subsonic_outflow(const scene::Scene& s) {
-  return scene::post_shock_mach_at_outflow(s) < 1.0;
+  return scene::outflow_can_be_subsonic(s);
 }
 
 std::string far_field_pressure(const scene::Scene& s) {

@@ -141,4 +141,14 @@ TEST(FarField, AttachedWedgeNearMaximumDeflectionCanLeaveSubsonic) {
   EXPECT_FALSE(cfd::subsonic_outflow(cfd_test::wedge_scene(2.0, 10.0)));
 }
 
+TEST(FarField, DetachedWedgeLeavesSubsonicAtItsShoulder) {
+  // Mach 2, 30 deg: beyond the maximum deflection; the sonic line starts at
+  // the wedge's base corner, which lies on the outflow boundary (Billig's
+  // shock alone would leave Mach > 1 behind it there).
+  const scene::Scene s = cfd_test::wedge_scene(2.0, 30.0);
+  EXPECT_GT(scene::post_shock_mach_at_outflow(s), 1.0);
+  EXPECT_TRUE(cfd::subsonic_outflow(s));
+  EXPECT_FALSE(cfd::start_at_rest(s));  // wedges start in the free stream
+}
+
 }  // namespace

@@ -4,15 +4,17 @@
 #include <cmath>
 
 #include "cfd/run_case.hpp"
-#include "meshgen/mesh.hpp"
 #include "json_fields.hpp"
+#include "meshgen/mesh.hpp"
 #include "pipeline/error_measures.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/shock_kind.hpp"
 #include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
@@ -22,7 +24,9 @@ namespace {
 
 using scene::kNaN;
 
-bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
+bool is_clustered(const std::string& family) {
+  return family.rfind("clustered", 0) == 0;
+}
 
 // rhoCentralFoam with a limited reconstruction spreads a shock over about
 // this many cells; the shock window (half-width) spans this many shock widths.
@@ -33,7 +37,8 @@ scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
   scene::Scene c = s;
   const scene::Domain d = scene::scene_domain(s);
   const double dx = std::max(d.width() / s.granular.lattice_nx, d.height() / s.granular.lattice_ny);
-  c.shockfit.window = std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
+  c.shockfit.window =
+      std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
   c.shockfit.min_samples = 0;  // CFD lattices carry no sample counts
   return c;
 }
@@ -62,7 +67,8 @@ meshgen::MeshRequest clustered_request(const ShockInput& shock, double level) {
 
 void check_interrupt(const std::string& where) {
   if (scene::interrupted())
-    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
+    throw scene::RunError("interrupted during " + where +
+                          "; finished stages are kept, rerun to resume");
 }
 
 std::string level_name(const std::string& family, double level) {
@@ -80,7 +86,10 @@ double reference_grid_level(const scene::PipelineParams& p) {
   if (p.reference_level) return *p.reference_level;
   if (p.levels.empty()) return 0.5;
   const double finest = *std::min_element(p.levels.begin(), p.levels.end());
-  auto has = [&](double l) { return std::any_of(p.levels.begin(), p.levels.end(), [&](double x) { return same_level(x, l); }); };
+  auto has = [&](double l) {
+    return std::any_of(p.levels.begin(), p.levels.end(),
+                       [&](double x) { return same_level(x, l); });
+  };
   double best = 0.5 * finest;
   for (const double a : p.levels) {
     const double l = 0.5 * a;
@@ -89,11 +98,13 @@ double reference_grid_level(const scene::PipelineParams& p) {
   return best;
 }
 
-GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,
-                       std::function<void(const std::string&)> on_step)
+GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np,
+                       std::set<std::string> force, std::function<void(const std::string&)> on_step)
     : s_(s), cache_(out_dir), np_(np), force_(std::move(force)), on_step_(std::move(on_step)) {}
 
-bool GridRunner::forced(const std::string& stage) const { return force_.count(stage) != 0 || force_.count("all") != 0; }
+bool GridRunner::forced(const std::string& stage) const {
+  return force_.count(stage) != 0 || force_.count("all") != 0;
+}
 
 std::string GridRunner::case_dir(const std::string& family, double level) const {
   return cache_.dir("cfd/" + level_name(family, level));
@@ -107,9 +118,10 @@ std::string GridRunner::mesh_dir(const std::string& family, double level) const 
 nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock) {
   const bool clustered = is_clustered(family);
   const std::string stage = "meshgen/" + level_name(family, level);
-  const std::string fp = fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
-                                      scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
-                                      clustered ? "clustered" : "uniform", std::to_string(level)});
+  const std::string fp =
+      fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
+                   scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
+                   clustered ? "clustered" : "uniform", std::to_string(level)});
   if (forced("meshgen")) cache_.invalidate(stage);
   if (cache_.fresh(stage, fp)) return cache_.result(stage);
   cache_.invalidate(stage);
@@ -133,7 +145,8 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
 // solver's CPU seconds (all ranks, as waited-for children).
 nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_mesh) {
   const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
-  const std::string fp = fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
+  const std::string fp =
+      fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
   if (forced("cfd")) cache_.invalidate(cstage);
   if (cache_.fresh(cstage, fp)) return cache_.result(cstage);
   cache_.invalidate(cstage);
@@ -143,7 +156,8 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
   const auto c = cfd::run_case_with_fallback(s_, cache_.dir(mstage), cache_.dir(cstage), co);
   const double solver_cpu = cpu.seconds();
   check_interrupt("cfd " + name);
-  const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx, s_.granular.lattice_ny);
+  const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx,
+                                            s_.granular.lattice_ny);
   scene::write_vti(lat, cache_.dir(cstage) + "/fields.vti");
   nlohmann::json csum = c.summary();
   csum["stage_cpu_seconds"] = solver_cpu;
@@ -154,7 +168,8 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
 
 // The CFD shock, located like the granular one with the shock window
 // widened to the grid's smeared shock (same rule for every family).
-nlohmann::json GridRunner::locate(const std::string& name, double level, const std::string& fp_cfd) {
+nlohmann::json GridRunner::locate(const std::string& name, double level,
+                                  const std::string& fp_cfd) {
   const std::string cstage = "cfd/" + name, fstage = cstage + "/shockfit";
   const scene::Scene fs_scene = cfd_shockfit_scene(s_, level * s_.mesh.h_min);
   const std::string fp = fingerprint({fp_cfd, scene::section_yaml(fs_scene, "shockfit")});
@@ -168,6 +183,20 @@ nlohmann::json GridRunner::locate(const std::string& name, double level, const s
   fsum["shock_value_ci"] = shock_ci(sh);
   cache_.mark_done(fstage, fp, fsum);
   return fsum;
+}
+
+// A shock of the other kind than the flow's (shockfit reading the Mach 2,
+// 30 deg wedge's near-normal bow shock as an attached line at 72 deg, whose
+// angle then stood in the standoff column) measures nothing comparable: no
+// value, and a note in the report.
+void GridRunner::drop_foreign_shock(GridRun& run) const {
+  const scene::ShockKind expected =
+      scene::attached_shock_beta(s_) ? scene::ShockKind::attached : scene::ShockKind::detached;
+  const scene::ShockKind found = scene::shock_kind_from(run.shock);
+  if (found == expected || found == scene::ShockKind::none) return;
+  run.note += (run.note.empty() ? "" : "; ") + std::string("shockfit found an ") + run.shock +
+              " shock on a " + scene::to_string(expected) + "-shock flow: no shock value";
+  run.value = run.value_ci = kNaN;
 }
 
 // A failure to measure is not silent: it becomes the run's note, shown in the report.
@@ -217,6 +246,7 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.shock = fsum.value("shock", "none");
   run.value = number_or_nan(fsum, "shock_value");
   run.value_ci = number_or_nan(fsum, "shock_value_ci");
+  drop_foreign_shock(run);
   run.wall_pressure_ratio = number_or_nan(csum, "wall_pressure_ratio");
   measure(name, primary, run);
   if (on_step_) on_step_("cfd " + name);

@@ -1,15 +1,16 @@
 #include "case_setup.hpp"
 
-#include <fcntl.h>
-#include <fmt/format.h>
-#include <sys/stat.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <regex>
 #include <stdexcept>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <fmt/format.h>
 
 #include "cfd/run_case.hpp"
 #include "foam_process.hpp"
@@ -38,9 +39,7 @@ constexpr double kFoamRR = 8314.47;
 // however soon after the start it comes.
 constexpr long kControlDictBackdateSeconds = 3600;
 
-std::string num(double v) {
-  return fmt::format("{:.12g}", v);
-}
+std::string num(double v) { return fmt::format("{:.12g}", v); }
 
 // Allrun is shell text that users run by hand: the bashrc path enters it
 // single-quoted, and the scene name (only inside a comment) on one line, so
@@ -87,11 +86,9 @@ std::string far_field_pressure(const scene::Scene& s) {
   if (!subsonic_outflow(s)) return "type zeroGradient;";
   const Freestream f = freestream(s);
   return fmt::format(
-      "type waveTransmissive; field p; phi phi; rho rho; psi thermo:psi; gamma {}; fieldInf {}; "
-      "lInf {}; "
+      "type waveTransmissive; field p; phi phi; rho rho; psi thermo:psi; gamma {}; fieldInf {}; lInf {}; "
       "value uniform {};",
-      num(f.gamma), num(f.p), num(kFarFieldRelaxationLength * scene::body_length(*s.body)),
-      num(f.p));
+      num(f.gamma), num(f.p), num(kFarFieldRelaxationLength * scene::body_length(*s.body)), num(f.p));
 }
 
 std::string limiter(const scene::Scene& s) {
@@ -116,8 +113,7 @@ std::string template_dir() {
   if (!ec) c.push_back((exe.parent_path() / "../share/shockgrain/cfd_cases/templates").string());
   for (const auto& d : c)
     if (!d.empty() && fs::exists(fs::path(d) / "rhoCentralFoam/system/controlDict")) return d;
-  throw InputError(
-      "cfd case templates not found (set SHOCKGRAIN_CFD_TEMPLATES to cfd_cases/templates)");
+  throw InputError("cfd case templates not found (set SHOCKGRAIN_CFD_TEMPLATES to cfd_cases/templates)");
 }
 
 Freestream freestream(const scene::Scene& s) {
@@ -127,8 +123,7 @@ Freestream freestream(const scene::Scene& s) {
   return f;
 }
 
-std::string fill_placeholders(const std::string& text,
-                              const std::map<std::string, std::string>& values,
+std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
                               const std::string& origin) {
   std::string out = text;
   for (const auto& [k, v] : values) {
@@ -173,23 +168,19 @@ void check_patches(const Mesh2D& m, const std::string& mesh_dir) {
   static const std::vector<std::string> roles{"inlet", "outlet", "top", "bottom", "body"};
   bool has_body = false, has_inlet = false;
   for (const PatchInfo& p : m.patches) {
-    if (p.type == "empty" || p.type == "symmetryPlane" || p.type == "symmetry" ||
-        p.type == "processor") {
+    if (p.type == "empty" || p.type == "symmetryPlane" || p.type == "symmetry" || p.type == "processor") {
       if (p.name == "body" || p.name == "inlet")
-        throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
-                         "' has type " + p.type);
+        throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name + "' has type " + p.type);
       continue;
     }
     if (std::find(roles.begin(), roles.end(), p.name) == roles.end())
-      throw InputError(
-          mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
-          "' is not one of inlet, outlet, top, bottom, body (or an empty/symmetryPlane patch)");
+      throw InputError(mesh_dir + "/constant/polyMesh/boundary: patch '" + p.name +
+                       "' is not one of inlet, outlet, top, bottom, body (or an empty/symmetryPlane patch)");
     has_body = has_body || p.name == "body";
     has_inlet = has_inlet || p.name == "inlet";
   }
   if (!has_body || !has_inlet)
-    throw InputError(mesh_dir +
-                     "/constant/polyMesh/boundary: the mesh needs patches 'inlet' and 'body'");
+    throw InputError(mesh_dir + "/constant/polyMesh/boundary: the mesh needs patches 'inlet' and 'body'");
 }
 
 void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
@@ -198,9 +189,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
   if (fs::exists(cd)) {
     const bool is_case = fs::exists(cd / "system/controlDict") || fs::is_empty(cd);
     if (!is_case)
-      throw InputError(
-          case_dir +
-          ": exists and is not an OpenFOAM case (no system/controlDict); not replacing it");
+      throw InputError(case_dir + ": exists and is not an OpenFOAM case (no system/controlDict); not replacing it");
     // Keep a mesh that lives inside the case directory itself.
     if (fs::equivalent(fs::path(mesh_dir), cd))
       throw InputError(case_dir + ": the mesh directory must differ from the case directory");
@@ -239,16 +228,13 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       fs::create_directories(cd / rel);
       continue;
     }
-    const std::string text =
-        fill_placeholders(scene::read_file(e.path().string()), v, e.path().string());
+    const std::string text = fill_placeholders(scene::read_file(e.path().string()), v, e.path().string());
     scene::write_file_atomic((cd / rel).string(), text);
-    if (rel == "Allrun")
-      fs::permissions(cd / rel, fs::perms::owner_exec | fs::perms::group_exec,
-                      fs::perm_options::add);
+    if (rel == "Allrun") fs::permissions(cd / rel, fs::perms::owner_exec | fs::perms::group_exec,
+                                         fs::perm_options::add);
   }
   scene::write_file_atomic((cd / "scene.yaml").string(), scene::to_yaml(s));
-  fs::copy(fs::path(mesh_dir) / "constant/polyMesh", cd / "constant/polyMesh",
-           fs::copy_options::recursive);
+  fs::copy(fs::path(mesh_dir) / "constant/polyMesh", cd / "constant/polyMesh", fs::copy_options::recursive);
   fs::copy(cd / "0.orig", cd / "0", fs::copy_options::recursive);
   backdate((cd / "system/controlDict").string());
 }

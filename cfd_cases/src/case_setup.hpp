@@ -20,12 +20,12 @@ Freestream freestream(const scene::Scene& s);
 struct CaseSettings {
   int np = 1;
   bool lts = false;
-  double flow_through = 1.0;    // domain length / U
-  double dt_ref = 0.0;          // global time step of the free stream at maxCo on this mesh
-  double end_time = 0.0;        // body lengths / c
-  double write_interval = 0.0;  // body lengths / c
-  long write_steps = 0;         // LTS: steps between written times
-  double lts_smoothing = 0.0;   // LTS: rDeltaTSmoothingCoeff (controlDict)
+  double flow_through = 1.0;   // domain length / U
+  double dt_ref = 0.0;         // global time step of the free stream at maxCo on this mesh
+  double end_time = 0.0;       // body lengths / c
+  double write_interval = 0.0; // body lengths / c
+  long write_steps = 0;        // LTS: steps between written times
+  double lts_smoothing = 0.0;  // LTS: rDeltaTSmoothingCoeff (controlDict)
 };
 
 // rhoCentralFoam's rDeltaTSmoothingCoeff under LTS: a cell's local step may
@@ -72,8 +72,7 @@ std::string limiter(const scene::Scene& s);
 bool local_time_stepping(const scene::Scene& s);
 
 // Replaces every @KEY@ in `text`; std::logic_error for a placeholder left over.
-std::string fill_placeholders(const std::string& text,
-                              const std::map<std::string, std::string>& values,
+std::string fill_placeholders(const std::string& text, const std::map<std::string, std::string>& values,
                               const std::string& origin);
 
 // Largest stable global time step of the free stream on `m` at Courant

@@ -1,25 +1,25 @@
 #include "cfd/run_case.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <csignal>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <thread>
+
+#include <fmt/format.h>
 
 #include "case_monitor.hpp"
 #include "case_setup.hpp"
 #include "foam_process.hpp"
 #include "log_follower.hpp"
+#include "scene/units.hpp"
+#include "steady_state.hpp"
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
-#include "scene/units.hpp"
-#include "steady_state.hpp"
 
 namespace cfd {
 namespace fs = std::filesystem;
@@ -43,8 +43,7 @@ constexpr double kTimeSlack = 1e-9;
 void remove_incomplete_times(const std::string& case_dir) {
   std::vector<std::string> dirs{case_dir};
   for (const auto& e : fs::directory_iterator(case_dir))
-    if (e.is_directory() && e.path().filename().string().rfind("processor", 0) == 0)
-      dirs.push_back(e.path().string());
+    if (e.is_directory() && e.path().filename().string().rfind("processor", 0) == 0) dirs.push_back(e.path().string());
   for (const auto& d : dirs)
     for (const TimeDir& t : time_dirs(d))
       if (!fs::exists(d + "/" + t.name + "/rho")) fs::remove_all(d + "/" + t.name);
@@ -63,8 +62,7 @@ Diagnosis diagnose(int rc, const std::string& log_path) {
   const std::string log = scene::read_file(log_path);
   if (log.find("sigFpe") != std::string::npos || rc == 128 + SIGFPE)
     return {"the solution diverged (floating-point exception in rhoCentralFoam)", true};
-  if (log.find("Negative initial temperature") != std::string::npos ||
-      log.find("Negative temperature") != std::string::npos)
+  if (log.find("Negative initial temperature") != std::string::npos || log.find("Negative temperature") != std::string::npos)
     return {"the solution diverged (negative temperature)", true};
   if (log.find("Maximum number of iterations exceeded") != std::string::npos)
     return {"the solution diverged (temperature iteration failed)", true};
@@ -76,8 +74,8 @@ Diagnosis diagnose(int rc, const std::string& log_path) {
 }
 
 // A divergence is thrown as Diverged, so that a caller may restart.
-[[noreturn]] void fail_diverged(const std::string& what, const std::string& log, double cpu,
-                                double wall, long steps) {
+[[noreturn]] void fail_diverged(const std::string& what, const std::string& log, double cpu, double wall,
+                                long steps) {
   throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps);
 }
 
@@ -90,15 +88,13 @@ nlohmann::json CaseResult::summary() const {
   j["cpu_seconds"] = cpu_seconds;
   const double cell_steps = static_cast<double>(cells) * static_cast<double>(steps);
   constexpr double kMicro = 1e6;
-  j["cpu_us_per_cell_step"] =
-      cell_steps > 0 ? nlohmann::json(cpu_seconds * kMicro / cell_steps) : nlohmann::json();
+  j["cpu_us_per_cell_step"] = cell_steps > 0 ? nlohmann::json(cpu_seconds * kMicro / cell_steps) : nlohmann::json();
   j["sim_time"] = sim_time;
   j["flow_through_time"] = flow_through_time;
   j["flow_throughs"] = flow_through_time > 0 ? sim_time / flow_through_time : 0.0;
   j["steps"] = steps;
   j["cells"] = cells;
-  j["wall_pressure_ratio"] =
-      std::isfinite(wall_pressure_ratio) ? nlohmann::json(wall_pressure_ratio) : nlohmann::json();
+  j["wall_pressure_ratio"] = std::isfinite(wall_pressure_ratio) ? nlohmann::json(wall_pressure_ratio) : nlohmann::json();
   j["final_density_change_l2"] = final_density_change_l2;
   j["final_density_change_max"] = final_density_change_max;
   j["final_force_change"] = final_force_change;
@@ -122,14 +118,12 @@ struct CasePaths {
 
 CasePaths checked_paths(const std::string& mesh_dir, const std::string& case_dir) {
   if (!fs::exists(fs::path(mesh_dir) / "constant/polyMesh/faces"))
-    throw scene::InputError(mesh_dir +
-                            ": no constant/polyMesh (run meshgen or cfd blockmesh first)");
-  const fs::path mesh_abs = fs::weakly_canonical(mesh_dir),
-                 case_abs = fs::weakly_canonical(case_dir);
+    throw scene::InputError(mesh_dir + ": no constant/polyMesh (run meshgen or cfd blockmesh first)");
+  const fs::path mesh_abs = fs::weakly_canonical(mesh_dir), case_abs = fs::weakly_canonical(case_dir);
   const auto rel = mesh_abs.lexically_relative(case_abs);
   if (!rel.empty() && *rel.begin() != "..")
-    throw scene::InputError(mesh_dir + ": the mesh directory lies inside the case directory " +
-                            case_dir + ", which is replaced");
+    throw scene::InputError(mesh_dir + ": the mesh directory lies inside the case directory " + case_dir +
+                            ", which is replaced");
   return {mesh_abs.string(), case_abs.string()};
 }
 
@@ -238,8 +232,7 @@ class SolverWatch {
       } catch (const NonPhysicalState& e) {
         solver_.terminate();
         solver_.wait();
-        fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_),
-                      log_.steps());
+        fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
       } catch (const scene::RunError& e) {
         solver_.terminate();
         solver_.wait();

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "cfd/run_case.hpp"
-#include "json_fields.hpp"
 #include "meshgen/mesh.hpp"
+#include "json_fields.hpp"
 #include "pipeline/error_measures.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
@@ -24,9 +24,7 @@ namespace {
 
 using scene::kNaN;
 
-bool is_clustered(const std::string& family) {
-  return family.rfind("clustered", 0) == 0;
-}
+bool is_clustered(const std::string& family) { return family.rfind("clustered", 0) == 0; }
 
 // rhoCentralFoam with a limited reconstruction spreads a shock over about
 // this many cells; the shock window (half-width) spans this many shock widths.
@@ -37,8 +35,7 @@ scene::Scene cfd_shockfit_scene(const scene::Scene& s, double h_shock) {
   scene::Scene c = s;
   const scene::Domain d = scene::scene_domain(s);
   const double dx = std::max(d.width() / s.granular.lattice_nx, d.height() / s.granular.lattice_ny);
-  c.shockfit.window =
-      std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
+  c.shockfit.window = std::max(s.shockfit.window, kWindowPerShockWidth * kCfdShockCells * h_shock / dx);
   c.shockfit.min_samples = 0;  // CFD lattices carry no sample counts
   return c;
 }
@@ -67,8 +64,7 @@ meshgen::MeshRequest clustered_request(const ShockInput& shock, double level) {
 
 void check_interrupt(const std::string& where) {
   if (scene::interrupted())
-    throw scene::RunError("interrupted during " + where +
-                          "; finished stages are kept, rerun to resume");
+    throw scene::RunError("interrupted during " + where + "; finished stages are kept, rerun to resume");
 }
 
 std::string level_name(const std::string& family, double level) {
@@ -86,10 +82,7 @@ double reference_grid_level(const scene::PipelineParams& p) {
   if (p.reference_level) return *p.reference_level;
   if (p.levels.empty()) return 0.5;
   const double finest = *std::min_element(p.levels.begin(), p.levels.end());
-  auto has = [&](double l) {
-    return std::any_of(p.levels.begin(), p.levels.end(),
-                       [&](double x) { return same_level(x, l); });
-  };
+  auto has = [&](double l) { return std::any_of(p.levels.begin(), p.levels.end(), [&](double x) { return same_level(x, l); }); };
   double best = 0.5 * finest;
   for (const double a : p.levels) {
     const double l = 0.5 * a;
@@ -98,13 +91,11 @@ double reference_grid_level(const scene::PipelineParams& p) {
   return best;
 }
 
-GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np,
-                       std::set<std::string> force, std::function<void(const std::string&)> on_step)
+GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,
+                       std::function<void(const std::string&)> on_step)
     : s_(s), cache_(out_dir), np_(np), force_(std::move(force)), on_step_(std::move(on_step)) {}
 
-bool GridRunner::forced(const std::string& stage) const {
-  return force_.count(stage) != 0 || force_.count("all") != 0;
-}
+bool GridRunner::forced(const std::string& stage) const { return force_.count(stage) != 0 || force_.count("all") != 0; }
 
 std::string GridRunner::case_dir(const std::string& family, double level) const {
   return cache_.dir("cfd/" + level_name(family, level));
@@ -118,10 +109,9 @@ std::string GridRunner::mesh_dir(const std::string& family, double level) const 
 nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock) {
   const bool clustered = is_clustered(family);
   const std::string stage = "meshgen/" + level_name(family, level);
-  const std::string fp =
-      fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
-                   scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
-                   clustered ? "clustered" : "uniform", std::to_string(level)});
+  const std::string fp = fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
+                                      scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
+                                      clustered ? "clustered" : "uniform", std::to_string(level)});
   if (forced("meshgen")) cache_.invalidate(stage);
   if (cache_.fresh(stage, fp)) return cache_.result(stage);
   cache_.invalidate(stage);
@@ -145,8 +135,7 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
 // solver's CPU seconds (all ranks, as waited-for children).
 nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_mesh) {
   const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
-  const std::string fp =
-      fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
+  const std::string fp = fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
   if (forced("cfd")) cache_.invalidate(cstage);
   if (cache_.fresh(cstage, fp)) return cache_.result(cstage);
   cache_.invalidate(cstage);
@@ -156,8 +145,7 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
   const auto c = cfd::run_case_with_fallback(s_, cache_.dir(mstage), cache_.dir(cstage), co);
   const double solver_cpu = cpu.seconds();
   check_interrupt("cfd " + name);
-  const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx,
-                                            s_.granular.lattice_ny);
+  const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx, s_.granular.lattice_ny);
   scene::write_vti(lat, cache_.dir(cstage) + "/fields.vti");
   nlohmann::json csum = c.summary();
   csum["stage_cpu_seconds"] = solver_cpu;
@@ -168,8 +156,7 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
 
 // The CFD shock, located like the granular one with the shock window
 // widened to the grid's smeared shock (same rule for every family).
-nlohmann::json GridRunner::locate(const std::string& name, double level,
-                                  const std::string& fp_cfd) {
+nlohmann::json GridRunner::locate(const std::string& name, double level, const std::string& fp_cfd) {
   const std::string cstage = "cfd/" + name, fstage = cstage + "/shockfit";
   const scene::Scene fs_scene = cfd_shockfit_scene(s_, level * s_.mesh.h_min);
   const std::string fp = fingerprint({fp_cfd, scene::section_yaml(fs_scene, "shockfit")});

@@ -18,10 +18,7 @@ double beta_at_max(double m, double g) {
   const double r = (std::sqrt(5.0) - 1) / 2;
   for (int k = 0; k < 200; ++k) {
     const double c = b - r * (b - a), d = a + r * (b - a);
-    if (tan_theta(m, c, g) > tan_theta(m, d, g))
-      b = d;
-    else
-      a = c;
+    if (tan_theta(m, c, g) > tan_theta(m, d, g)) b = d; else a = c;
   }
   return 0.5 * (a + b);
 }
@@ -42,10 +39,7 @@ std::optional<double> oblique_shock_beta(double mach, double theta, double gamma
   double a = std::asin(1.0 / mach), b = bmax;
   for (int k = 0; k < 200; ++k) {
     const double c = 0.5 * (a + b);
-    if (tan_theta(mach, c, gamma) < target)
-      a = c;
-    else
-      b = c;
+    if (tan_theta(mach, c, gamma) < target) a = c; else b = c;
   }
   return 0.5 * (a + b);
 }
@@ -77,17 +71,12 @@ double rest_start_min_mach(double gamma) {
 double rayleigh_pitot_ratio(double mach, double gamma) {
   const double m2 = mach * mach, g = gamma;
   if (mach <= 1.0) return std::pow(1.0 + 0.5 * (g - 1.0) * m2, g / (g - 1.0));
-  const double stagnation =
-      std::pow((g + 1.0) * (g + 1.0) * m2 / (4.0 * g * m2 - 2.0 * (g - 1.0)), g / (g - 1.0));
+  const double stagnation = std::pow((g + 1.0) * (g + 1.0) * m2 / (4.0 * g * m2 - 2.0 * (g - 1.0)), g / (g - 1.0));
   return stagnation * (1.0 - g + 2.0 * g * m2) / (g + 1.0);
 }
 
-double billig_standoff_cylinder(double mach) {
-  return 0.386 * std::exp(4.67 / (mach * mach));
-}
-double billig_standoff_sphere(double mach) {
-  return 0.143 * std::exp(3.24 / (mach * mach));
-}
+double billig_standoff_cylinder(double mach) { return 0.386 * std::exp(4.67 / (mach * mach)); }
+double billig_standoff_sphere(double mach) { return 0.143 * std::exp(3.24 / (mach * mach)); }
 double billig_shock_radius_cylinder(double mach) {
   return 1.386 * std::exp(1.8 / std::pow(mach - 1.0, 0.75));
 }

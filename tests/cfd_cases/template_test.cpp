@@ -29,12 +29,10 @@ TEST(Template, LeftoverPlaceholderNamesFileAndKey) {
 
 TEST(Template, DirectoryHoldsTheOpenFoamLayout) {
   const std::filesystem::path d = cfd::template_dir();
-  for (const char* f :
-       {"rhoCentralFoam/0.orig/p", "rhoCentralFoam/0.orig/T", "rhoCentralFoam/0.orig/U",
-        "rhoCentralFoam/constant/thermophysicalProperties", "rhoCentralFoam/system/controlDict",
-        "rhoCentralFoam/system/fvSchemes", "rhoCentralFoam/system/fvSolution",
-        "rhoCentralFoam/system/decomposeParDict", "rhoCentralFoam/Allrun",
-        "blockMesh/system/blockMeshDict"})
+  for (const char* f : {"rhoCentralFoam/0.orig/p", "rhoCentralFoam/0.orig/T", "rhoCentralFoam/0.orig/U",
+                        "rhoCentralFoam/constant/thermophysicalProperties", "rhoCentralFoam/system/controlDict",
+                        "rhoCentralFoam/system/fvSchemes", "rhoCentralFoam/system/fvSolution",
+                        "rhoCentralFoam/system/decomposeParDict", "rhoCentralFoam/Allrun", "blockMesh/system/blockMeshDict"})
     EXPECT_TRUE(std::filesystem::exists(d / f)) << f;
 }
 
@@ -45,8 +43,7 @@ TEST(RunCase, MissingMeshIsInputError) {
     (void)cfd::run_case(s, dir + "/nowhere", dir + "/case", {});
     FAIL() << "expected InputError";
   } catch (const scene::InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              dir + "/nowhere: no constant/polyMesh (run meshgen or cfd blockmesh first)");
+    EXPECT_EQ(std::string(e.what()), dir + "/nowhere: no constant/polyMesh (run meshgen or cfd blockmesh first)");
   }
 }
 
@@ -57,9 +54,7 @@ TEST(BlockMesh, DetachedWedgeIsInputError) {
     cfd::make_wedge_block_mesh(s, 1000, cfd_test::scratch_dir());
     FAIL() << "expected InputError";
   } catch (const scene::InputError& e) {
-    EXPECT_EQ(
-        std::string(e.what()),
-        "<string>: the shock is detached at this Mach number; blockmesh covers attached wedges");
+    EXPECT_EQ(std::string(e.what()), "<string>: the shock is detached at this Mach number; blockmesh covers attached wedges");
   }
 }
 
@@ -76,12 +71,9 @@ TEST(Params, LocalTimeSteppingAutoIsTimeAccurateAndTrueOrFalseOverride) {
   // auto: time-accurate for every flow (LTS's steady stop left a larger
   // error on fine wedge grids); true and false are the user's choice.
   EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0)));
-  EXPECT_FALSE(
-      cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: auto}")));
-  EXPECT_TRUE(
-      cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: true}")));
-  EXPECT_FALSE(
-      cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: false}")));
+  EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: auto}")));
+  EXPECT_TRUE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: true}")));
+  EXPECT_FALSE(cfd::local_time_stepping(cfd_test::wedge_scene(3.0, 10.0, "{local_time_stepping: false}")));
   const scene::Scene disc =
       scene::parse_scene("name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
   EXPECT_FALSE(cfd::local_time_stepping(disc));

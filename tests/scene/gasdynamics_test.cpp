@@ -1,11 +1,10 @@
 // Reference gas dynamics against tabulated values (NACA 1135 and the verification card's figures).
-#include "scene/gasdynamics.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "scene/gasdynamics.hpp"
 #include "scene/units.hpp"
 
 namespace {
@@ -15,11 +14,8 @@ constexpr double kRatioTol = 0.0015;
 }  // namespace
 
 TEST(Gasdynamics, ThetaBetaMachCaseStudies) {
-  struct Case {
-    double m, theta, beta, p;
-  };
-  for (const Case c :
-       {Case{3, 10, 27.38, 2.054}, Case{4, 15, 27.06, 3.697}, Case{5, 20, 29.80, 7.037}}) {
+  struct Case { double m, theta, beta, p; };
+  for (const Case c : {Case{3, 10, 27.38, 2.054}, Case{4, 15, 27.06, 3.697}, Case{5, 20, 29.80, 7.037}}) {
     const auto b = scene::oblique_shock_beta(c.m, c.theta * kDeg, 1.4);
     ASSERT_TRUE(b.has_value());
     EXPECT_NEAR(*b / kDeg, c.beta, kAngleTolDeg + 0.005);
@@ -58,8 +54,7 @@ TEST(Gasdynamics, RayleighPitotTable) {
     EXPECT_NEAR(scene::rayleigh_pitot_ratio(m, 1.4), ratio, kTableRel * ratio) << "M = " << m;
   EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0, 1.4), 1.8929, 1e-4);
   // Continuous through M = 1 (the normal shock vanishes there).
-  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4),
-              1e-6);
+  EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4), 1e-6);
 }
 
 TEST(Gasdynamics, RestStartMinMachIsWhereTheInflowShockStandsStill) {

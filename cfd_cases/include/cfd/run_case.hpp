@@ -4,9 +4,10 @@
 // Allrun), run the solver with a steady-state monitor, resample the result.
 // Units: lengths in body lengths, speeds in free-stream speeds of sound,
 // p = T = 1 and rho = gamma in the free stream (docs/cfd_cases.md).
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "scene/errors.hpp"
 #include "scene/lattice.hpp"
@@ -15,34 +16,32 @@
 namespace cfd {
 
 struct CaseOptions {
-  int np = 1;                               // overrides scene cfd.np when > 1
-  std::optional<bool> local_time_stepping;  // overrides scene cfd.local_time_stepping
-  std::optional<double> lts_smoothing;      // LTS rDeltaTSmoothingCoeff (default: case_setup.hpp)
+  int np = 1;                                 // overrides scene cfd.np when > 1
+  std::optional<bool> local_time_stepping;    // overrides scene cfd.local_time_stepping
+  std::optional<double> lts_smoothing;        // LTS rDeltaTSmoothingCoeff (default: case_setup.hpp)
 };
 
 struct CaseResult {
   bool steady_state_reached = false;
-  double wall_seconds = 0.0;  // solver start to solver exit (steady stop included)
+  double wall_seconds = 0.0;   // solver start to solver exit (steady stop included)
   // User + system CPU of rhoCentralFoam (all ranks) and of decomposePar and
   // reconstructPar when parallel: the load-independent cost of the run.
   double cpu_seconds = 0.0;
-  double sim_time = 0.0;  // simulated (pseudo-)time of the final state, body lengths / c
-  long steps = 0;         // solver time steps
+  double sim_time = 0.0;       // simulated (pseudo-)time of the final state, body lengths / c
+  long steps = 0;              // solver time steps
   long cells = 0;
-  double wall_pressure_ratio =
-      0.0;  // wedge: mean wall p / free-stream p on the face; NaN otherwise
+  double wall_pressure_ratio = 0.0;  // wedge: mean wall p / free-stream p on the face; NaN otherwise
   std::string case_dir;
   std::string history_csv;
   // Extra facts for reports.
-  double flow_through_time = 0.0;        // domain length / free-stream speed
-  double final_density_change_l2 = 0.0;  // per flow-through time, relative to rho_inf
+  double flow_through_time = 0.0;    // domain length / free-stream speed
+  double final_density_change_l2 = 0.0;   // per flow-through time, relative to rho_inf
   double final_density_change_max = 0.0;
   double final_force_change = 0.0;
   bool local_time_stepping = false;
   int np = 1;
-  std::string start;  // "rest" or "freestream" (cfd.start, resolved)
-  std::string
-      outflow;  // "supersonic" (zeroGradient far field) or "subsonic" (waveTransmissive pressure)
+  std::string start;    // "rest" or "freestream" (cfd.start, resolved)
+  std::string outflow;  // "supersonic" (zeroGradient far field) or "subsonic" (waveTransmissive)
   // Empty, or the robust settings the run restarted with after the first
   // attempt diverged, and why (its CPU, wall seconds and steps are included above).
   std::string fallback;
@@ -70,16 +69,15 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
 // more from the initial state with the robust settings (robust_settings):
 // Tadmor flux, Minmod limiter, half the Courant number. The result records
 // the fallback and counts both attempts' CPU and wall seconds.
-CaseResult run_case_with_fallback(const scene::Scene& s, const std::string& mesh_dir,
-                                  const std::string& case_dir, const CaseOptions& o);
+CaseResult run_case_with_fallback(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
+                                  const CaseOptions& o);
 // The scene's cfd settings made robust; `what` describes the change.
 scene::CfdParams robust_settings(const scene::CfdParams& p, std::string& what);
 
 // Resamples the latest time of case_dir onto an nx x ny lattice covering the
 // scene domain: fields rho, u, v, p, T, mach and inside_body (1 inside, 0
 // outside; the others NaN inside the body or outside the mesh). Writes nothing.
-scene::Lattice resample_to_lattice(const scene::Scene& s, const std::string& case_dir, int nx,
-                                   int ny);
+scene::Lattice resample_to_lattice(const scene::Scene& s, const std::string& case_dir, int nx, int ny);
 
 // Development/test grid without meshgen: a uniform blockMesh grid of the upper
 // half of a wedge scene (symmetry plane, then the wedge face as `body`), with

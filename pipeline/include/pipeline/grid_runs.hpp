@@ -4,11 +4,12 @@
 // shock located by shockfit, the exact-reference errors. Each step is a
 // cached stage under the run's directory, with its CPU seconds recorded.
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "pipeline/compare.hpp"
 #include "pipeline/stage_cache.hpp"
@@ -37,8 +38,7 @@ class GridRunner {
   // family: "uniform", "reference" (uniform, in neither family) or
   // "clustered..." (around `shock`). Meshes, and unless the scene's
   // pipeline.cfd is false, solves, locates the CFD shock and measures.
-  GridRun run(const std::string& family, double level, const ShockInput& shock,
-              const PrimaryError& primary);
+  GridRun run(const std::string& family, double level, const ShockInput& shock, const PrimaryError& primary);
 
   // The stage directory of a grid's CFD case and mesh.
   std::string case_dir(const std::string& family, double level) const;

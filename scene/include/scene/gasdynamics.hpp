@@ -37,8 +37,8 @@ double rayleigh_pitot_ratio(double mach, double gamma);
 
 // Billig (1967) correlations, gamma = 1.4. Standoff over nose radius, and the
 // shock curvature radius over nose radius.
-double billig_standoff_cylinder(double mach);      // 0.386 exp(4.67/M^2)
-double billig_standoff_sphere(double mach);        // 0.143 exp(3.24/M^2)
+double billig_standoff_cylinder(double mach);   // 0.386 exp(4.67/M^2)
+double billig_standoff_sphere(double mach);     // 0.143 exp(3.24/M^2)
 double billig_shock_radius_cylinder(double mach);  // 1.386 exp(1.8/(M-1)^0.75)
 // Billig's hyperbola: distance downstream of the shock vertex at height y,
 // for nose radius R. x = Rc cot^2(mu) [sqrt(1 + y^2 tan^2(mu)/Rc^2) - 1].

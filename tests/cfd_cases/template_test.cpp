@@ -143,4 +143,13 @@ TEST(FarField, DetachedWedgeLeavesSubsonicAtItsShoulder) {
   EXPECT_FALSE(cfd::start_at_rest(s));  // wedges start in the free stream
 }
 
+TEST(FarField, PointedPolygonKeepsTheSupersonicOutflow) {
+  // An arrow at Mach 3: its 22 deg nose carries an attached shock and the
+  // flow reaches the barbs on the outflow boundary supersonic.
+  const scene::Scene s = scene::parse_scene(
+      "name: arrow\nbody: {kind: polygon, points: [[0, 0], [1, 0.4], [0.7, 0], [1, -0.4]]}\nfreestream: {mach: 3}\n");
+  EXPECT_FALSE(cfd::subsonic_outflow(s));
+  EXPECT_TRUE(cfd::start_at_rest(s));
+}
+
 }  // namespace

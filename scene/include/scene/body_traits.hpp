@@ -56,9 +56,9 @@ bool starts_at_rest(const BodySpec& b);
 // undetermined.
 double post_shock_mach_at_outflow(const Scene& s);
 // True when the flow can leave the domain subsonic behind the shock: that
-// Mach number is below 1, or the shock is detached and the body's widest
-// station is a sharp corner (wedge, polygon vertex) on the outflow boundary,
-// where the sonic line begins.
+// Mach number is below 1, or the shock is detached ahead of a wedge, whose
+// base corner (its widest station, where the sonic line begins) lies on the
+// outflow boundary.
 bool outflow_can_be_subsonic(const Scene& s);
 
 }  // namespace scene

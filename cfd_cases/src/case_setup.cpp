@@ -16,6 +16,7 @@
 #include "foam_process.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 
 #ifndef CFD_TEMPLATE_SOURCE_DIR
@@ -73,7 +74,21 @@ bool attached_wedge(const scene::Scene& s) {
 
 bool start_at_rest(const scene::Scene& s) {
   if (s.cfd.start != "auto") return s.cfd.start == "rest";
-  return !attached_wedge(s);
+  return s.body && scene::starts_at_rest(*s.body) &&
+         s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
+}
+
+bool subsonic_outflow(const scene::Scene& s) {
+  return scene::outflow_can_be_subsonic(s);
+}
+
+std::string far_field_pressure(const scene::Scene& s) {
+  if (!subsonic_outflow(s)) return "type zeroGradient;";
+  const Freestream f = freestream(s);
+  return fmt::format(
+      "type waveTransmissive; field p; phi phi; rho rho; psi thermo:psi; gamma {}; fieldInf {}; lInf {}; "
+      "value uniform {};",
+      num(f.gamma), num(f.p), num(kFarFieldRelaxationLength * scene::body_length(*s.body)), num(f.p));
 }
 
 std::string limiter(const scene::Scene& s) {
@@ -188,6 +203,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::s
       {"T_INF", num(f.T)},
       {"MACH", num(f.mach)},
       {"U_INIT", start_at_rest(s) ? "0" : num(f.mach)},
+      {"FAR_FIELD_P", far_field_pressure(s)},
       {"MOL_WEIGHT", num(kFoamRR * f.gamma)},
       {"CP", num(1.0 / (f.gamma - 1.0))},
       {"END_TIME", num(cs.end_time)},

@@ -39,8 +39,32 @@ struct CaseSettings {
 // (docs/bench_cfd.md); 0.2 was in between.
 inline constexpr double kLtsSmoothingCoeff = 1.0;
 
-// Whether the flow starts at rest (cfd.start, resolved for "auto").
+// Whether the flow starts at rest (cfd.start, resolved for "auto": at rest
+// where scene::starts_at_rest says so (not wedges), unless the free stream is below
+// scene::rest_start_min_mach, where the start at rest sends a shock out
+// through the inlet; then in the free stream).
 bool start_at_rest(const scene::Scene& s);
+
+// Far-field outflow boundaries (outlet, top, bottom) when the estimated flow
+// behind the shock at the outflow station is subsonic
+// (scene::outflow_can_be_subsonic: Billig's shock, or a detached shock ahead
+// of a sharp shoulder on the outflow boundary): the pressure is then one incoming
+// characteristic, and extrapolating it (zeroGradient, right for supersonic
+// outflow) leaves its level free: on the Mach 1.3 disc the bow shock drifted
+// upstream without end. OpenFOAM's waveTransmissive lets outgoing waves
+// leave and relaxes the pressure to the free stream's over a length
+// kFarFieldRelaxationLength (docs/cfd_cases.md). Supersonic outflows keep
+// zeroGradient.
+bool subsonic_outflow(const scene::Scene& s);
+
+// waveTransmissive's lInf, in body lengths. With 26 (the domain length) on
+// the outlet alone the Mach 1.3 disc's bow shock still drifted upstream
+// after 25 flow-throughs; with 1 on the outlet and the sides it settled (standoff ~7 R, Billig 6.1 R) and the density change
+// fell below 5e-3 per flow-through (docs/reliability.md).
+inline constexpr double kFarFieldRelaxationLength = 1.0;
+
+// The pressure condition of the far-field boundaries as OpenFOAM entries.
+std::string far_field_pressure(const scene::Scene& s);
 // The reconstruction limiter (cfd.limiter, resolved for "auto").
 std::string limiter(const scene::Scene& s);
 // Whether the case uses local time stepping (cfd.local_time_stepping,

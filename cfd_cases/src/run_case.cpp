@@ -100,6 +100,8 @@ nlohmann::json CaseResult::summary() const {
   j["final_force_change"] = final_force_change;
   j["local_time_stepping"] = local_time_stepping;
   j["np"] = np;
+  j["start"] = start;
+  j["outflow"] = outflow;
   j["case_dir"] = case_dir;
   j["history_csv"] = history_csv;
   j["fallback"] = fallback.empty() ? nlohmann::json(nullptr) : nlohmann::json(fallback);
@@ -328,6 +330,8 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.flow_through_time = cs.flow_through;
   r.local_time_stepping = cs.lts;
   r.np = cs.np;
+  r.start = start_at_rest(s) ? "rest" : "freestream";
+  r.outflow = subsonic_outflow(s) ? "subsonic" : "supersonic";
   r.wall_pressure_ratio = scene::kNaN;
 
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;

@@ -7,12 +7,14 @@
 #include "meshgen/mesh.hpp"
 #include "json_fields.hpp"
 #include "pipeline/error_measures.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
+#include "scene/shock_kind.hpp"
 #include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
@@ -170,6 +172,20 @@ nlohmann::json GridRunner::locate(const std::string& name, double level, const s
   return fsum;
 }
 
+// A shock of the other kind than the flow's (shockfit reading the Mach 2,
+// 30 deg wedge's near-normal bow shock as an attached line at 72 deg, whose
+// angle then stood in the standoff column) measures nothing comparable: no
+// value, and a note in the report.
+void GridRunner::drop_foreign_shock(GridRun& run) const {
+  const scene::ShockKind expected =
+      scene::attached_shock_beta(s_) ? scene::ShockKind::attached : scene::ShockKind::detached;
+  const scene::ShockKind found = scene::shock_kind_from(run.shock);
+  if (found == expected || found == scene::ShockKind::none) return;
+  run.note += (run.note.empty() ? "" : "; ") + std::string("shockfit found an ") + run.shock +
+              " shock on a " + scene::to_string(expected) + "-shock flow: no shock value";
+  run.value = run.value_ci = kNaN;
+}
+
 // A failure to measure is not silent: it becomes the run's note, shown in the report.
 void GridRunner::measure(const std::string& name, const PrimaryError& primary, GridRun& run) const {
   try {
@@ -217,6 +233,7 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.shock = fsum.value("shock", "none");
   run.value = number_or_nan(fsum, "shock_value");
   run.value_ci = number_or_nan(fsum, "shock_value_ci");
+  drop_foreign_shock(run);
   run.wall_pressure_ratio = number_or_nan(csum, "wall_pressure_ratio");
   measure(name, primary, run);
   if (on_step_) on_step_("cfd " + name);

@@ -1,5 +1,6 @@
 #include "scene/gasdynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -57,6 +58,14 @@ double oblique_downstream_mach(double mach, double beta, double theta, double ga
   const double mn2 = std::pow(mach * std::sin(beta), 2);
   const double mn2d = (1.0 + 0.5 * (gamma - 1.0) * mn2) / (gamma * mn2 - 0.5 * (gamma - 1.0));
   return std::sqrt(mn2d) / std::sin(beta - theta);
+}
+
+double oblique_deflection(double mach, double beta, double gamma) {
+  return std::atan(std::max(0.0, tan_theta(mach, beta, gamma)));
+}
+
+double rest_start_min_mach(double gamma) {
+  return 2.0 / std::sqrt(3.0 - gamma);
 }
 
 double rayleigh_pitot_ratio(double mach, double gamma) {

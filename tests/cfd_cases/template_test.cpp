@@ -6,6 +6,7 @@
 
 #include "case_setup.hpp"
 #include "cfd/run_case.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "test_util.hpp"
 
@@ -86,6 +87,69 @@ TEST(Params, LocalTimeSteppingRejectsOtherWords) {
     EXPECT_NE(std::string(e.what()).find("cfd.local_time_stepping"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("auto"), std::string::npos) << e.what();
   }
+}
+
+TEST(FarField, CaseStudiesKeepTheSupersonicOutflowAndTheirStart) {
+  // The shipped case studies: outflow supersonic (zeroGradient, as before),
+  // blunt bodies started at rest, attached wedges in the free stream.
+  for (const char* name : {"wedge_M3_10", "wedge_M4_15", "wedge_M5_20", "disc_M4", "apollo_M5"}) {
+    const scene::Scene s =
+        scene::load_scene(std::string(SOURCE_DIR) + "/pipeline/cases/" + name + ".yaml");
+    EXPECT_FALSE(cfd::subsonic_outflow(s)) << name;
+    EXPECT_EQ(cfd::far_field_pressure(s), "type zeroGradient;") << name;
+    EXPECT_EQ(cfd::start_at_rest(s), s.body->kind != scene::BodyKind::wedge) << name;
+  }
+}
+
+TEST(FarField, NearSonicDiscHasASubsonicOutflowAndStartsInTheFreeStream) {
+  // Mach 1.3: Billig's shock crosses the disc's widest station at ~72 deg,
+  // with Mach ~0.9 behind it; the start at rest would send a shock out
+  // through the inlet (below Mach 1.58).
+  const scene::Scene s =
+      scene::parse_scene("name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\n");
+  EXPECT_LT(scene::post_shock_mach_at_outflow(s), 1.0);
+  EXPECT_TRUE(cfd::subsonic_outflow(s));
+  EXPECT_NE(cfd::far_field_pressure(s).find("type waveTransmissive;"), std::string::npos);
+  EXPECT_NE(cfd::far_field_pressure(s).find("fieldInf 1;"), std::string::npos);
+  EXPECT_NE(cfd::far_field_pressure(s).find("lInf 0.5;"), std::string::npos);  // one radius
+  EXPECT_FALSE(cfd::start_at_rest(s));
+  // cfd.start still overrides.
+  EXPECT_TRUE(cfd::start_at_rest(scene::parse_scene(
+      "name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\ncfd: {start: rest}\n")));
+  // Just above the rest-start limit the disc starts at rest again.
+  EXPECT_TRUE(cfd::start_at_rest(
+      scene::parse_scene("name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.6}\n")));
+}
+
+TEST(FarField, AttachedWedgeNearMaximumDeflectionCanLeaveSubsonic) {
+  // Mach 2, 22.9 deg (maximum deflection 22.97 deg): the weak shock leaves
+  // Mach 0.963 behind it; at 22 deg, 1.076 (exact oblique-shock relations).
+  constexpr double kMachTol = 1e-3;
+  EXPECT_NEAR(scene::post_shock_mach_at_outflow(cfd_test::wedge_scene(2.0, 22.9)), 0.9629,
+              kMachTol);
+  EXPECT_NEAR(scene::post_shock_mach_at_outflow(cfd_test::wedge_scene(2.0, 22.0)), 1.0760,
+              kMachTol);
+  EXPECT_TRUE(cfd::subsonic_outflow(cfd_test::wedge_scene(2.0, 22.9)));
+  EXPECT_FALSE(cfd::subsonic_outflow(cfd_test::wedge_scene(2.0, 10.0)));
+}
+
+TEST(FarField, DetachedWedgeLeavesSubsonicAtItsShoulder) {
+  // Mach 2, 30 deg: beyond the maximum deflection; the sonic line starts at
+  // the wedge's base corner, which lies on the outflow boundary (Billig's
+  // shock alone would leave Mach > 1 behind it there).
+  const scene::Scene s = cfd_test::wedge_scene(2.0, 30.0);
+  EXPECT_GT(scene::post_shock_mach_at_outflow(s), 1.0);
+  EXPECT_TRUE(cfd::subsonic_outflow(s));
+  EXPECT_FALSE(cfd::start_at_rest(s));  // wedges start in the free stream
+}
+
+TEST(FarField, PointedPolygonKeepsTheSupersonicOutflow) {
+  // An arrow at Mach 3: its 22 deg nose carries an attached shock and the
+  // flow reaches the barbs on the outflow boundary supersonic.
+  const scene::Scene s = scene::parse_scene(
+      "name: arrow\nbody: {kind: polygon, points: [[0, 0], [1, 0.4], [0.7, 0], [1, -0.4]]}\nfreestream: {mach: 3}\n");
+  EXPECT_FALSE(cfd::subsonic_outflow(s));
+  EXPECT_TRUE(cfd::start_at_rest(s));
 }
 
 }  // namespace

@@ -56,3 +56,22 @@ TEST(Gasdynamics, RayleighPitotTable) {
   // Continuous through M = 1 (the normal shock vanishes there).
   EXPECT_NEAR(scene::rayleigh_pitot_ratio(1.0 + 1e-9, 1.4), scene::rayleigh_pitot_ratio(1.0, 1.4), 1e-6);
 }
+
+TEST(Gasdynamics, RestStartMinMachIsWhereTheInflowShockStandsStill) {
+  // 2/sqrt(3 - gamma): 1.5811 for air. Check it against the shock relation
+  // it comes from: a shock of Mach Ms = M induces the velocity M/2.
+  constexpr double kRoundOff = 1e-12;
+  for (const double g : {1.4, 5.0 / 3.0, 1.1}) {
+    const double m = scene::rest_start_min_mach(g);
+    EXPECT_NEAR(2.0 / (g + 1.0) * (m - 1.0 / m), 0.5 * m, kRoundOff) << "gamma " << g;
+  }
+  EXPECT_NEAR(scene::rest_start_min_mach(1.4), std::sqrt(2.5), kRoundOff);
+}
+
+TEST(Gasdynamics, DeflectionInvertsTheWeakShockAngle) {
+  constexpr double kAngleTol = 1e-9;
+  const double beta = *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, beta, 1.4), 10 * kDeg, kAngleTol);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, std::numbers::pi / 2, 1.4), 0.0, kAngleTol);
+  EXPECT_NEAR(scene::oblique_deflection(3.0, std::asin(1.0 / 3.0), 1.4), 0.0, kAngleTol);
+}

@@ -40,6 +40,8 @@ struct CaseResult {
   double final_force_change = 0.0;
   bool local_time_stepping = false;
   int np = 1;
+  std::string start;    // "rest" or "freestream" (cfd.start, resolved)
+  std::string outflow;  // "supersonic" (zeroGradient far field) or "subsonic" (waveTransmissive)
   // Empty, or the robust settings the run restarted with after the first
   // attempt diverged, and why (its CPU, wall seconds and steps are included above).
   std::string fallback;

@@ -49,6 +49,7 @@ class GridRunner {
   nlohmann::json solve(const std::string& name, const std::string& fp_mesh);
   nlohmann::json locate(const std::string& name, double level, const std::string& fp_cfd);
   void measure(const std::string& name, const PrimaryError& primary, GridRun& run) const;
+  void drop_foreign_shock(GridRun& run) const;
   bool forced(const std::string& stage) const;
 
   const scene::Scene& s_;

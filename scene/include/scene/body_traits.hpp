@@ -37,4 +37,28 @@ double correlation_nose_radius(const BodySpec& b);
 // True when that radius is the body's own nose radius (no approximation).
 bool correlation_is_exact_shape(const BodySpec& b);
 
+// Whether a flow past this body starts at rest rather than in the free
+// stream (cfd.start auto, above the rest-start Mach limit). Wedges: no, their
+// base lies on the outflow boundary, so an impulsive start has no afterbody
+// to open a vacuum behind, and at rest the starting shock creeps in from the
+// inlet (at Mach 2 it travels at 0.26 c). Other bodies: yes (Apollo's
+// receding afterbody; discs and polygons as measured in the case studies).
+bool starts_at_rest(const BodySpec& b);
+
+// Estimated Mach number just behind the shock where it crosses the outflow
+// station: the body's widest station (or the domain's outflow boundary, if
+// upstream of it; meshgen ends a body's grid there). Attached wedges: the
+// exact flow behind the oblique shock. Other bodies: Billig's cylinder shock
+// (standoff and hyperbola, nose radius correlation_nose_radius) at that
+// station, its local angle giving the oblique-shock state behind it. Below 1
+// the outflow boundary cuts the subsonic region behind the bow shock, where
+// an extrapolating (supersonic) outflow condition leaves the pressure
+// undetermined.
+double post_shock_mach_at_outflow(const Scene& s);
+// True when the flow can leave the domain subsonic behind the shock: that
+// Mach number is below 1, or the shock is detached ahead of a wedge, whose
+// base corner (its widest station, where the sonic line begins) lies on the
+// outflow boundary.
+bool outflow_can_be_subsonic(const Scene& s);
+
 }  // namespace scene

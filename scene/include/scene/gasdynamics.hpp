@@ -15,6 +15,19 @@ double oblique_pressure_ratio(double mach, double beta, double gamma);
 double oblique_density_ratio(double mach, double beta, double gamma);
 // Mach number behind an oblique shock of angle beta and deflection theta.
 double oblique_downstream_mach(double mach, double beta, double theta, double gamma);
+// Flow deflection theta behind an oblique shock of angle beta (either
+// branch; 0 at the Mach angle and at a normal shock).
+double oblique_deflection(double mach, double beta, double gamma);
+
+// Lowest inflow Mach number at which a flow started at rest behind a
+// supersonic inflow boundary stays inside the domain: the inflow (u = M)
+// meeting gas at rest (u = 0, same p and T) is a symmetric Riemann problem
+// whose two shocks each take half the velocity jump. The left one travels at
+// M - Ms in the lab frame, where Ms is its Mach number (2/(gamma+1)
+// (Ms - 1/Ms) = M/2); it stands still at Ms = M, i.e. M = 2/sqrt(3 - gamma)
+// (1.581 for air). Below that it runs upstream, out through an inflow
+// boundary whose state is fixed, and piles up there.
+double rest_start_min_mach(double gamma);
 
 // Stagnation-point pressure of a blunt body over the free-stream static
 // pressure (Rayleigh pitot formula): a normal shock, then isentropic

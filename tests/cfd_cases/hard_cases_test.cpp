@@ -128,6 +128,17 @@ TEST(HardCases, RobustSettingsAreTadmorMinmodAndHalfTheCourantNumber) {
   EXPECT_EQ(what, "flux_scheme Tadmor, limiter Minmod, max_co 0.2");
 }
 
+namespace {
+// The scene's uniform grid (its mesh sizes) in DIR/mesh, run with the
+// divergence fallback in DIR/case.
+cfd::CaseResult run_on_uniform_grid(const scene::Scene& s, const std::string& dir) {
+  meshgen::MeshRequest req;
+  req.uniform = true;
+  meshgen::generate_mesh(s, req, dir + "/mesh");
+  return cfd::run_case_with_fallback(s, dir + "/mesh", dir + "/case", {});
+}
+}  // namespace
+
 TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
   // From the default start (at rest, Kurganov) the Mach 8 disc diverges on
   // this grid (docs/reliability.md); the fallback must carry it to a
@@ -135,10 +146,7 @@ TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
   const scene::Scene s = scene::parse_scene(
       "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, h_max: 0.2}\n");
   const std::string d = cfd_test::scratch_dir();
-  meshgen::MeshRequest req;
-  req.uniform = true;
-  meshgen::generate_mesh(s, req, d + "/mesh");
-  const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
+  const cfd::CaseResult r = run_on_uniform_grid(s, d);
   EXPECT_TRUE(r.steady_state_reached);
   EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos) << "the default start no longer diverges: " << r.fallback;
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
@@ -163,10 +171,7 @@ TEST(HardCases, NearSonicDiscReachesSteadyOnASmallUniformGrid) {
       "name: disc_M1_3\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\nmesh: {h_min: "
       "1.0, h_max: 1.0}\n");
   const std::string d = cfd_test::scratch_dir();
-  meshgen::MeshRequest req;
-  req.uniform = true;
-  meshgen::generate_mesh(s, req, d + "/mesh");
-  const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
+  const cfd::CaseResult r = run_on_uniform_grid(s, d);
   EXPECT_TRUE(r.steady_state_reached);
   EXPECT_LT(r.final_density_change_l2, s.cfd.steady_tol);
   EXPECT_LT(r.final_force_change, s.cfd.force_tol);

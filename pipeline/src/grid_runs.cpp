@@ -176,13 +176,19 @@ nlohmann::json GridRunner::locate(const std::string& name, double level, const s
 // 30 deg wedge's near-normal bow shock as an attached line at 72 deg, whose
 // angle then stood in the standoff column) measures nothing comparable: no
 // value, and a note in the report.
-void GridRunner::drop_foreign_shock(GridRun& run) const {
+std::optional<std::string> foreign_shock_note(const scene::Scene& s, const std::string& shock_kind) {
   const scene::ShockKind expected =
-      scene::attached_shock_beta(s_) ? scene::ShockKind::attached : scene::ShockKind::detached;
-  const scene::ShockKind found = scene::shock_kind_from(run.shock);
-  if (found == expected || found == scene::ShockKind::none) return;
-  run.note += (run.note.empty() ? "" : "; ") + std::string("shockfit found an ") + run.shock +
-              " shock on a " + scene::to_string(expected) + "-shock flow: no shock value";
+      scene::attached_shock_beta(s) ? scene::ShockKind::attached : scene::ShockKind::detached;
+  const scene::ShockKind found = scene::shock_kind_from(shock_kind);
+  if (found == expected || found == scene::ShockKind::none) return std::nullopt;
+  return "shockfit found an " + shock_kind + " shock on a " + scene::to_string(expected) +
+         "-shock flow: no shock value";
+}
+
+void GridRunner::drop_foreign_shock(GridRun& run) const {
+  const auto note = foreign_shock_note(s_, run.shock);
+  if (!note) return;
+  run.note += (run.note.empty() ? "" : "; ") + *note;
   run.value = run.value_ci = kNaN;
 }
 

@@ -245,3 +245,18 @@ TEST(CostEstimate, ClusteredEstimateCountsTheBodyLayers) {
   s.mesh.h_body = s.mesh.h_max;
   EXPECT_GT(wall_at_h_min, clustered_cells());
 }
+
+// A CFD shock of the other kind than the flow's gets no value, with a note.
+TEST(GridRuns, AShockOfTheOtherKindIsNoShockValue) {
+  const scene::Scene wedge = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
+  const scene::Scene detached_wedge = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 30, length: 1}\nfreestream: {mach: 2}\n");
+  EXPECT_FALSE(pipeline::foreign_shock_note(wedge, "attached").has_value());
+  EXPECT_FALSE(pipeline::foreign_shock_note(wedge, "none").has_value());
+  const auto note = pipeline::foreign_shock_note(wedge, "detached");
+  ASSERT_TRUE(note.has_value());
+  EXPECT_NE(note->find("attached-shock flow"), std::string::npos) << *note;
+  ASSERT_TRUE(pipeline::foreign_shock_note(detached_wedge, "attached").has_value());
+  EXPECT_FALSE(pipeline::foreign_shock_note(detached_wedge, "detached").has_value());
+}

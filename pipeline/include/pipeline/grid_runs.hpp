@@ -4,6 +4,7 @@
 // shock located by shockfit, the exact-reference errors. Each step is a
 // cached stage under the run's directory, with its CPU seconds recorded.
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -27,6 +28,12 @@ struct ShockInput {
   // (predictors that size grids themselves: Prediction::size_fields).
   std::vector<std::pair<double, std::string>> size_fields;
 };
+
+// A grid's CFD shock of the other kind than the flow's (`shock_kind` as
+// shockfit names it: shockfit read a detached wedge's near-normal bow shock
+// as an attached 72 deg line) measures nothing comparable: the note the
+// report shows, or nothing when the kinds agree or no shock was found.
+std::optional<std::string> foreign_shock_note(const scene::Scene& s, const std::string& shock_kind);
 
 class GridRunner {
  public:

@@ -347,14 +347,15 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       const FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
       const PrecisionMeasure previous = out.last;
       out.last = goal.measure(r.fields);
+      const double averaged = static_cast<double>(out.snapshots) * dt / tau;  // flow-through times
       out.checks.push_back(
-          {{"flow_throughs", static_cast<double>(out.snapshots) * dt / tau},
+          {{"flow_throughs", averaged},
            {"half_width", std::isfinite(out.last.half_width) ? nlohmann::json(out.last.half_width)
                                                              : nlohmann::json(nullptr)},
            {"quantity", out.last.quantity},
            {"cpu_seconds", cpu.seconds()},
            {"details", out.last.details}});
-      out.history.push_back({static_cast<double>(out.snapshots) * dt / tau, out.last.half_width, out.last.quantity});
+      out.history.push_back({averaged, out.last.half_width, out.last.quantity});
       if (anyone(group, met(goal, previous, out.last))) {
         out.stopped_by = "precision";
         break;

@@ -18,6 +18,7 @@
 #include "meshgen/mesh.hpp"
 #include "scene/cpu_clock.hpp"
 #include "meshgen/size_field.hpp"
+#include "meshgen/shock_extension.hpp"
 #include "plot.hpp"
 #include "scene/errors.hpp"
 #include "scene/cli.hpp"
@@ -91,8 +92,9 @@ struct Plan {
   SizeParams base;          // clustered sizes at scale 1 (scene coordinates)
   double uniform_h = 0;     // uniform size at scale 1
   std::optional<double> band_width;  // scene coordinates
-  std::vector<Vec2> curve;
+  std::vector<Vec2> curve;   // as predicted, extended to the region's edge (shock_extension.hpp)
   std::vector<double> ci;
+  double extension_start = 0, extension_end = 0;  // scene units added at either end
   std::shared_ptr<const scene::Lattice> size_lattice;  // adapted grids (body lengths)
   std::string size_field_path;                         // where it was read from
   std::optional<double> target;
@@ -203,6 +205,13 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   if (mp.band_width) plan.band_width = *mp.band_width * L;
   plan.curve = r.shock_curve;
   plan.ci = r.shock_ci;
+  if (mp.extend_shock && !plan.curve.empty()) {
+    ExtendedShock e = extend_shock_to_boundary(plan.curve, plan.ci, region);
+    plan.curve = std::move(e.curve);
+    plan.ci = std::move(e.ci);
+    plan.extension_start = e.start_length;
+    plan.extension_end = e.end_length;
+  }
   plan.target = r.target_cells ? r.target_cells : (r.h_min || r.h_max) ? std::nullopt : mp.target_cells;
   plan.size_lattice = r.size_field;
   plan.size_field_path = r.size_field_path;
@@ -468,6 +477,7 @@ nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const Fluid
   j["mesh_attempts"] = m.attempts;
   j["size_field"] = plan.size_lattice ? nlohmann::json(plan.size_field_path) : nlohmann::json(nullptr);
   j["shock_points"] = plan.curve.size();
+  j["shock_extension"] = {plan.extension_start / region.length_scale, plan.extension_end / region.length_scale};
   std::size_t kept = 0;
   for (const ShockRun& run : sizing.runs) kept += run.points.size();
   j["shock_points_clipped"] = kept;

@@ -1,0 +1,127 @@
+#include "meshgen/shock_extension.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshgen {
+
+using scene::Vec2;
+
+namespace {
+
+// The end tangent is fitted over this fraction of the curve's length, and
+// over at least two points.
+constexpr double kEndStretch = 0.25;
+// The exit along the tangent is bracketed by steps of this fraction of the
+// domain's diagonal, then bisected to kExitBisections halvings.
+constexpr double kExitStep = 1.0 / 2000.0;
+constexpr int kExitBisections = 50;
+
+struct Stretch {
+  Vec2 direction;  // unit, pointing out of the curve's end
+  std::size_t far = 0;  // index of the stretch's other end
+  double length = 0.0;
+};
+
+// Least-squares direction (principal axis) of points [lo, hi], oriented from
+// `from` towards `to`.
+Vec2 principal_direction(const std::vector<Vec2>& pts, std::size_t lo, std::size_t hi, Vec2 from, Vec2 to) {
+  Vec2 mean{0, 0};
+  for (std::size_t i = lo; i <= hi; ++i) mean += pts[i];
+  mean = mean / static_cast<double>(hi - lo + 1);
+  double sxx = 0, sxy = 0, syy = 0;
+  for (std::size_t i = lo; i <= hi; ++i) {
+    const Vec2 d = pts[i] - mean;
+    sxx += d.x * d.x;
+    sxy += d.x * d.y;
+    syy += d.y * d.y;
+  }
+  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  Vec2 dir{std::cos(angle), std::sin(angle)};
+  if (scene::dot(dir, to - from) < 0) dir = -dir;
+  return dir;
+}
+
+// The stretch at the last point (at_end) or the first.
+Stretch end_stretch(const std::vector<Vec2>& pts, bool at_end) {
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < pts.size(); ++i) total += scene::norm(pts[i + 1] - pts[i]);
+  const std::size_t n = pts.size();
+  const auto at = [&](std::size_t k) { return at_end ? pts[n - 1 - k] : pts[k]; };
+  std::size_t k = 1;
+  double len = scene::norm(at(1) - at(0));
+  while (k + 1 < n && len < kEndStretch * total) {
+    len += scene::norm(at(k + 1) - at(k));
+    ++k;
+  }
+  Stretch s;
+  s.length = len;
+  s.far = at_end ? n - 1 - k : k;
+  const std::size_t lo = std::min(s.far, at_end ? n - 1 : std::size_t{0});
+  const std::size_t hi = std::max(s.far, at_end ? n - 1 : std::size_t{0});
+  s.direction = principal_direction(pts, lo, hi, at(k), at(0));
+  return s;
+}
+
+// Distance along `dir` from `p` (inside) to where the line first leaves the region.
+double exit_distance(const FluidRegion& region, Vec2 p, Vec2 dir) {
+  const scene::Domain& d = region.domain;
+  const double diagonal = std::hypot(d.width(), d.height());
+  const double step = kExitStep * diagonal;
+  double inside = 0.0;
+  for (double t = step; t <= 2.0 * diagonal; t += step) {
+    if (!region.contains(p + t * dir)) {
+      double lo = inside, hi = t;
+      for (int it = 0; it < kExitBisections; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (region.contains(p + mid * dir) ? lo : hi) = mid;
+      }
+      return lo;
+    }
+    inside = t;
+  }
+  return inside;
+}
+
+}  // namespace
+
+ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve, const std::vector<double>& ci,
+                                       const FluidRegion& region) {
+  ExtendedShock out{curve, ci, 0.0, 0.0};
+  std::vector<Vec2> pts;
+  for (const Vec2 p : curve)
+    if (pts.empty() || !(pts.back() == p)) pts.push_back(p);
+  if (pts.size() < 2) return out;
+  const bool has_ci = !ci.empty() && ci.size() == curve.size();
+  // ci of a distinct point: that of its last copy in `curve` (copies share a position).
+  const auto ci_of = [&](Vec2 p) {
+    for (std::size_t i = curve.size(); i-- > 0;)
+      if (curve[i] == p) return std::isfinite(ci[i]) ? ci[i] : 0.0;
+    return 0.0;
+  };
+  for (const bool at_end : {false, true}) {
+    const Vec2 tip = at_end ? pts.back() : pts.front();
+    if (!region.contains(tip)) continue;
+    const Stretch s = end_stretch(pts, at_end);
+    const double length = exit_distance(region, tip, s.direction);
+    if (!(length > 0.0)) continue;
+    const Vec2 exit = tip + length * s.direction;
+    double w_exit = 0.0;
+    if (has_ci) {
+      const double spread = (ci_of(tip) + ci_of(pts[s.far])) / s.length;
+      w_exit = ci_of(tip) + length * spread;
+    }
+    if (at_end) {
+      out.curve.push_back(exit);
+      if (has_ci) out.ci.push_back(w_exit);
+      out.end_length = length;
+    } else {
+      out.curve.insert(out.curve.begin(), exit);
+      if (has_ci) out.ci.insert(out.ci.begin(), w_exit);
+      out.start_length = length;
+    }
+  }
+  return out;
+}
+
+}  // namespace meshgen

@@ -16,11 +16,16 @@ constexpr double kEndStretch = 0.25;
 // domain's diagonal, then bisected to kExitBisections halvings.
 constexpr double kExitStep = 1.0 / 2000.0;
 constexpr int kExitBisections = 50;
+// An end is carried at most this many end-stretch lengths: farther, a bow
+// shock's wing bends (towards the Mach angle) by more than the data fitted
+// can tell, and its band would be a guess.
+constexpr double kMaxExtrapolation = 1.0;
 
 struct Stretch {
   Vec2 direction;  // unit, pointing out of the curve's end
   std::size_t far = 0;  // index of the stretch's other end
   double length = 0.0;
+  double curvature = 0.0;  // |turn| between the stretch's two halves over half its length
 };
 
 // Least-squares direction (principal axis) of points [lo, hi], oriented from
@@ -60,6 +65,15 @@ Stretch end_stretch(const std::vector<Vec2>& pts, bool at_end) {
   const std::size_t lo = std::min(s.far, at_end ? n - 1 : std::size_t{0});
   const std::size_t hi = std::max(s.far, at_end ? n - 1 : std::size_t{0});
   s.direction = principal_direction(pts, lo, hi, at(k), at(0));
+  // Curvature from the turn between the halves' directions, when each half
+  // has at least two points.
+  if (hi - lo >= 3) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    const Vec2 d1 = principal_direction(pts, lo, mid, pts[lo], pts[mid]);
+    const Vec2 d2 = principal_direction(pts, mid, hi, pts[mid], pts[hi]);
+    const double turn = std::atan2(std::abs(d1.x * d2.y - d1.y * d2.x), scene::dot(d1, d2));
+    s.curvature = turn / (0.5 * len);
+  }
   return s;
 }
 
@@ -103,13 +117,15 @@ ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve, const std
     const Vec2 tip = at_end ? pts.back() : pts.front();
     if (!region.contains(tip)) continue;
     const Stretch s = end_stretch(pts, at_end);
-    const double length = exit_distance(region, tip, s.direction);
+    const double length = std::min(exit_distance(region, tip, s.direction), kMaxExtrapolation * s.length);
     if (!(length > 0.0)) continue;
     const Vec2 exit = tip + length * s.direction;
-    double w_exit = 0.0;
+    // The straight line's own 95% spread, plus where the curve would have
+    // gone had it kept bending as over its end stretch.
+    double w_exit = 0.5 * s.curvature * length * (length + s.length);
     if (has_ci) {
       const double spread = (ci_of(tip) + ci_of(pts[s.far])) / s.length;
-      w_exit = ci_of(tip) + length * spread;
+      w_exit += ci_of(tip) + length * spread;
     }
     if (at_end) {
       out.curve.push_back(exit);

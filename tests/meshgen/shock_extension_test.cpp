@@ -62,11 +62,40 @@ TEST(ShockExtension, TheBandWidensWithTheDistanceExtrapolated) {
   const meshgen::ExtendedShock e = meshgen::extend_shock_to_boundary(cut, ci, r);
   ASSERT_EQ(e.ci.size(), e.curve.size());
   // The end stretch is the fewest intervals that reach a quarter of the
-  // curve's length (5 of 18): w(s) = ci + s 2 ci / L_stretch on a straight curve.
+  // curve's length (5 of 18): w(s) = ci + s 2 ci / L_stretch on a straight
+  // curve (no curvature term), and s never beyond L_stretch: the outlet is
+  // farther than that from x = 0.6, the apex end reaches y = 0 first.
   const double stretch = scene::norm(cut[18] - cut[13]);
-  EXPECT_NEAR(e.ci.back(), kCi + e.end_length * 2.0 * kCi / stretch, 1e-12);
-  EXPECT_NEAR(e.ci.front(), kCi + e.start_length * 2.0 * kCi / stretch, 1e-12);
-  EXPECT_GT(e.ci.back(), 4.0 * kCi);  // a long extrapolation is a wide band
+  EXPECT_NEAR(e.end_length, stretch, 1e-12);
+  EXPECT_NEAR(e.ci.back(), kCi + e.end_length * 2.0 * kCi / stretch, 1e-9);
+  EXPECT_NEAR(e.ci.front(), kCi + e.start_length * 2.0 * kCi / stretch, 1e-9);
+  EXPECT_NEAR(e.start_length, stretch, 1e-12);
+}
+
+TEST(ShockExtension, ACurvedEndWidensWithItsCurvature) {
+  // An arc of radius R: carried straight along its end stretch's mean
+  // direction, it leaves the circle by about s (s + L) / (2 R), which the
+  // half-width must cover.
+  const scene::Scene s = scene::load_scene(meshgen_test::case_path("wedge_M3_10"));
+  const meshgen::FluidRegion r = meshgen::make_fluid_region(s);
+  constexpr double kRadius = 0.8, kPi = 3.14159265358979323846;
+  const Vec2 centre{0.4, -0.3};
+  std::vector<Vec2> arc;
+  for (int i = 0; i <= 40; ++i) {
+    const double a = (100.0 - i) * kPi / 180.0;
+    arc.push_back(centre + kRadius * Vec2{std::cos(a), std::sin(a)});
+  }
+  const meshgen::ExtendedShock e = meshgen::extend_shock_to_boundary(arc, {}, r);
+  ASSERT_EQ(e.ci.size(), 0u);
+  const meshgen::ExtendedShock w = meshgen::extend_shock_to_boundary(arc, std::vector<double>(arc.size(), 0.0), r);
+  ASSERT_EQ(w.ci.size(), w.curve.size());
+  const double s_end = w.end_length;
+  ASSERT_GT(s_end, 0.1);
+  // How far the straight extension's end lies from the circle.
+  const double off = std::abs(scene::norm(w.curve.back() - centre) - kRadius);
+  const double stretch = kRadius * 10.0 * kPi / 180.0;  // a quarter of the 40-degree arc
+  EXPECT_NEAR(w.ci.back(), s_end * (s_end + stretch) / (2.0 * kRadius), 0.1 * w.ci.back());
+  EXPECT_GE(w.ci.back(), 0.9 * off);
 }
 
 TEST(ShockExtension, ABowShockLeavesTheRegionAtBothEnds) {

@@ -8,18 +8,25 @@
 // the clustered grid the accuracy its band bought.
 //
 // Each end is extended straight along the curve's end tangent (the line
-// fitted through the end stretch, kEndStretch of the curve's length) to the
-// first point where the line leaves the region (the body or the domain's
-// boundary). Straight is exact for an attached shock; a bow shock's wings
-// straighten towards the Mach angle, so the tangent errs by the curvature
-// left over the extension, which the widening half-width below covers.
+// fitted through the end stretch, the last quarter of the curve's length) to
+// the first point where the line leaves the region (the body or the
+// domain's boundary), but never farther than the end stretch is long: that
+// far the data still say where the shock goes. Straight is exact for an
+// attached shock (whose gaps are short: the extension reaches the edge); a
+// bow shock's wing bends towards the Mach angle, and its extension may stop
+// short of the edge.
 //
 // The half-width over the extension widens with the distance s from the end
-// point as the extrapolated line's position uncertainty does:
-//   w(s) = w_end + s (ci_a + ci_b) / L_stretch
-// (the 95% position intervals at the two ends of the stretch over its length
-// bound the direction's 95% uncertainty). Without stated intervals it stays
-// w_end (0 here: the band's default width applies).
+// point as the extrapolation's uncertainty does:
+//   w(s) = w_end + s (ci_a + ci_b) / L_stretch + kappa s (s + L_stretch) / 2
+// the first term from the 95% position intervals at the two ends of the
+// stretch (they bound the direction's 95% uncertainty), the second where the
+// shock would be had it kept turning as it turns over the stretch (kappa:
+// the turn between the stretch's halves over half its length; the fitted
+// direction is the stretch's mean, half a stretch's turn behind the tip's
+// tangent, hence s + L_stretch rather than s). Without
+// stated intervals only the curvature term is kept (the band's default
+// width is the floor either way).
 #include <vector>
 
 #include "meshgen/fluid_region.hpp"

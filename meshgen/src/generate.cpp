@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <functional>
 #include <future>
 #include <optional>
 
@@ -384,8 +385,8 @@ CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double
 }
 
 // The OpenFOAM case of the staged mesh: constant/polyMesh written directly
-// from the plane mesh, then checkMesh; mesh.msh (for users, nothing reads it
-// on the way) is written on a second thread while checkMesh runs.
+// from the plane mesh, then checkMesh. `meanwhile` (what nothing on the way
+// reads: mesh.msh, the plots) runs on a second thread while checkMesh runs.
 struct FoamCase {
   std::map<std::string, std::string> patch_types;
   CheckMeshReport check;
@@ -393,7 +394,8 @@ struct FoamCase {
 };
 
 FoamCase export_to_foam(const fs::path& stage, const FluidRegion& region, const PlaneMesh& mesh,
-                        double thickness, const std::string& out_dir) {
+                        double thickness, const std::string& out_dir,
+                        const std::function<void(const ExtrudedLayer&)>& meanwhile) {
   FoamCase f;
   const std::vector<FoamPatch> patches = foam_patches(region.domain.symmetric);
   for (const FoamPatch& p : patches) f.patch_types[p.name] = p.type;
@@ -401,11 +403,9 @@ FoamCase export_to_foam(const fs::path& stage, const FluidRegion& region, const 
   write_control_dict(stage.string());
   write_poly_mesh(mesh, layer, thickness, patches, stage.string());
   stop_if_interrupted("after writing the OpenFOAM mesh", out_dir);
-  auto msh = std::async(std::launch::async, [&] {
-    write_extruded_msh(mesh, layer, thickness, (stage / "mesh.msh").string());
-  });
+  auto side = std::async(std::launch::async, [&] { meanwhile(layer); });
   f.check = run_check_mesh(stage.string());
-  msh.get();
+  side.get();
   f.cpu_seconds = f.check.cpu_seconds;
   return f;
 }
@@ -547,7 +547,12 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   res.max_cell_size = sizes.max;
 
   stop_if_interrupted("after meshing", out_dir);
-  const FoamCase foam = export_to_foam(stage, region, m.mesh, job.thickness, out_dir);
+  Plots plots;
+  const FoamCase foam =
+      export_to_foam(stage, region, m.mesh, job.thickness, out_dir, [&](const ExtrudedLayer& layer) {
+        write_extruded_msh(m.mesh, layer, job.thickness, (stage / "mesh.msh").string());
+        plots = plot_grid(s, m, plan, region, res.kind, stage);
+      });
   res.max_non_orthogonality = foam.check.max_non_orthogonality;
   res.max_skewness = foam.check.max_skewness;
   res.check_mesh_ok = foam.check.ok;
@@ -555,7 +560,6 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
     throw scene::RunError("checkMesh counts " + std::to_string(foam.check.cells) + " cells, gmsh " +
                           std::to_string(res.cells));
 
-  const Plots plots = plot_grid(s, m, plan, region, res.kind, stage);
   res.details = mesh_details(s, plan, region, job, m, sizes, foam, plots, cpu);
   stop_if_interrupted("after checkMesh", out_dir);
   res.details["seconds_total"] = seconds_since(t_total);

@@ -5,8 +5,10 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 
+#include "region_split.hpp"
 #include "scene/errors.hpp"
 
 namespace meshgen {
@@ -50,7 +52,11 @@ void ensure_initialized() {
 void set_options(const GmshJob& job) {
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
-  gmsh::option::setNumber("General.NumThreads", 1);
+  // Threads mesh different surfaces at once (the pieces of a split region);
+  // the size callback is const and safe to call from them.
+  gmsh::option::setNumber("General.NumThreads", job.threads);
+  gmsh::option::setNumber("Mesh.MaxNumThreads1D", 1);
+  gmsh::option::setNumber("Mesh.MaxNumThreads2D", job.threads);
   gmsh::option::setNumber("Mesh.Algorithm", job.frontal ? kAlgorithmFrontal : kAlgorithmDelaunay);
   gmsh::option::setNumber("Mesh.RecombineAll", job.recombine ? 1 : 0);
   gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kSimpleRecombination);
@@ -193,35 +199,74 @@ void extrude_and_name(const std::vector<int>& plane, const std::vector<TaggedCur
   gmsh::model::setPhysicalName(3, fluid, "fluid");
 }
 
+int add_curve(const BoundaryCurve& c, PointTable& points) {
+  const int a = points.get(c.a), b = points.get(c.b);
+  if (!c.is_arc) return gmsh::model::geo::addLine(a, b);
+  const int centre = gmsh::model::geo::addPoint(c.center.x, c.center.y, 0.0);
+  return gmsh::model::geo::addCircleArc(a, centre, b);
+}
+
+// The region as two plane surfaces sharing the cut (region_split.hpp), for
+// gmsh to mesh on two threads. Adds the boundary curves to `boundary`.
+std::vector<int> add_pieces(const RegionPieces& pieces, PointTable& points, std::vector<TaggedCurve>& boundary) {
+  std::vector<int> plane;
+  int cut = 0;
+  Vec2 cut_start;
+  for (const auto& loops : pieces.loops) {
+    std::vector<int> loop_tags;
+    for (const auto& loop : loops) {
+      std::vector<int> curves;
+      for (const PieceCurve& pc : loop) {
+        if (!pc.cut) {
+          curves.push_back(add_curve(pc.curve, points));
+          boundary.push_back({curves.back(), pc.curve.patch});
+        } else if (cut == 0) {
+          cut = add_curve(pc.curve, points);
+          cut_start = pc.curve.a;
+          curves.push_back(cut);
+        } else {
+          curves.push_back(pc.curve.a == cut_start ? cut : -cut);  // the other piece runs it backwards
+        }
+      }
+      loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
+    }
+    plane.push_back(gmsh::model::geo::addPlaneSurface(loop_tags));
+  }
+  return plane;
+}
+
 PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
               const std::vector<ShockStrip>& strips, const GmshJob& job) {
   gmsh::clear();
   gmsh::model::add("meshgen");
   set_options(job);
   PointTable points(kSamePoint * region.length_scale);
-  std::vector<int> loop_tags;
   std::vector<TaggedCurve> boundary;  // in the order gmsh reports lateral surfaces
-  for (const auto& loop : region.loops) {
-    std::vector<int> curves;
-    for (const BoundaryCurve& c : loop) {
-      const int a = points.get(c.a), b = points.get(c.b);
-      if (c.is_arc) {
-        const int centre = gmsh::model::geo::addPoint(c.center.x, c.center.y, 0.0);
-        curves.push_back(gmsh::model::geo::addCircleArc(a, centre, b));
-      } else {
-        curves.push_back(gmsh::model::geo::addLine(a, b));
+  std::vector<int> plane;
+  // Split only where nothing else cuts the region (strips are holes the cut
+  // would cross) and gmsh's own extrusion is not asked for (it expects one
+  // main surface).
+  std::optional<RegionPieces> pieces;
+  if (job.threads > 1 && strips.empty() && job.extruded_msh_path.empty()) pieces = split_region(region, size);
+  if (pieces) {
+    plane = add_pieces(*pieces, points, boundary);
+  } else {
+    std::vector<int> loop_tags;
+    for (const auto& loop : region.loops) {
+      std::vector<int> curves;
+      for (const BoundaryCurve& c : loop) {
+        curves.push_back(add_curve(c, points));
+        boundary.push_back({curves.back(), c.patch});
       }
-      boundary.push_back({curves.back(), c.patch});
+      loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
     }
-    loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
+    // Strips are holes of the main surface and surfaces of their own; their
+    // lateral faces after extrusion are internal (no patch).
+    std::vector<int> strip_surfaces;
+    for (const ShockStrip& st : strips) loop_tags.push_back(add_strip(st, points, strip_surfaces));
+    plane.push_back(gmsh::model::geo::addPlaneSurface(loop_tags));
+    plane.insert(plane.end(), strip_surfaces.begin(), strip_surfaces.end());
   }
-  // Strips are holes of the main surface and surfaces of their own; their
-  // lateral faces after extrusion are internal (no patch).
-  std::vector<int> strip_surfaces;
-  for (const ShockStrip& st : strips) loop_tags.push_back(add_strip(st, points, strip_surfaces));
-  const int surface = gmsh::model::geo::addPlaneSurface(loop_tags);
-  std::vector<int> plane{surface};
-  plane.insert(plane.end(), strip_surfaces.begin(), strip_surfaces.end());
   if (!job.extruded_msh_path.empty()) extrude_and_name(plane, boundary, strips, job.thickness);
   gmsh::model::geo::synchronize();
 
@@ -231,6 +276,7 @@ PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
   PlaneMesh m = read_plane(plane, boundary);
   if (!job.extruded_msh_path.empty()) gmsh::write(job.extruded_msh_path);
   gmsh::clear();
+  m.pieces = static_cast<int>(pieces ? pieces->loops.size() : 1);
   return m;
 }
 

@@ -28,12 +28,16 @@ struct PlaneMesh {
   std::vector<BoundaryEdge> boundary;
   long quads = 0, triangles = 0;
   long volume_cells = 0;  // hexahedra + prisms of the one-cell layer (= cells)
+  int pieces = 1;         // surfaces the region was meshed as (region_split.hpp)
 };
 
 struct GmshJob {
   bool recombine = true;
   bool frontal = false;   // Frontal-Delaunay instead of Delaunay
   int smoothing = 0;      // Laplacian smoothing passes
+  // > 1: the region is cut in two where it can be (region_split.hpp) and
+  // gmsh meshes the pieces on this many threads.
+  int threads = 1;
   double thickness = 0.05;  // z-extent of the one-cell layer
   // When set, gmsh itself also extrudes the mesh one cell thick, names the
   // patches (physical surfaces inlet, outlet, top, bottom, body,

@@ -165,3 +165,30 @@ TEST(PolyMesh, WedgeMatchesGmshToFoam) { compare_routes("wedge_M3_10", false); }
 TEST(PolyMesh, DiscArcsMatchGmshToFoam) { compare_routes("disc_M4", false); }
 TEST(PolyMesh, ApolloMatchesGmshToFoam) { compare_routes("apollo_M5", false); }
 TEST(PolyMesh, ShockStripsMatchGmshToFoam) { compare_routes("wedge_M3_10", true); }
+
+// The region cut in two for gmsh's threads (region_split.hpp): the cut's
+// edges become internal faces, the grid covers the region exactly (a wedge
+// region is a polygon: its area is exact) and passes checkMesh.
+TEST(PolyMesh, SplitRegionIsOneClosedGrid) {
+  const std::string dir = meshgen_test::fresh_dir("poly_split");
+  const scene::Scene s = scene::load_scene(meshgen_test::case_path("wedge_M3_10"));
+  const meshgen::FluidRegion region = meshgen::make_fluid_region(s);
+  meshgen::GmshJob job;
+  job.thickness = kThickness;
+  job.threads = 2;
+  const meshgen::PlaneMesh plane = meshgen::mesh_with_gmsh(region, meshgen::SizeField(kH * region.length_scale), job);
+  ASSERT_EQ(plane.pieces, 2);
+  meshgen::write_control_dict(dir);
+  meshgen::write_poly_mesh(plane, meshgen::extrude_layer(plane), kThickness, meshgen::foam_patches(true), dir);
+  const auto m = meshgen_test::read_poly_mesh(dir);
+  double volume = 0.0;
+  for (const double v : meshgen_test::cell_volumes(m)) {
+    EXPECT_GT(v, 0.0);
+    volume += v;
+  }
+  double area = 0.0;  // the region's outer loop (a wedge region has no hole)
+  ASSERT_EQ(region.loops.size(), 1u);
+  for (const auto& c : region.loops.front()) area += 0.5 * (c.a.x * c.b.y - c.b.x * c.a.y);
+  EXPECT_NEAR(volume / (area * kThickness), 1.0, kTotalTolerance);
+  expect_check_mesh_passes(dir, static_cast<long>(plane.cells.size()));
+}

@@ -12,7 +12,8 @@ namespace meshgen {
 namespace {
 
 std::uint64_t edge_key(int a, int b) {
-  const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b)),
+             hi = static_cast<std::uint64_t>(std::max(a, b));
   return lo << 32 | hi;
 }
 
@@ -21,7 +22,8 @@ double twice_signed_area(const PlaneMesh& m, const std::array<int, 4>& c) {
   double s = 0.0;
   for (int k = 0; k < n; ++k) {
     const scene::Vec2 p = m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])];
-    const scene::Vec2 q = m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>((k + 1) % n)])];
+    const scene::Vec2 q =
+        m.nodes[static_cast<std::size_t>(c[static_cast<std::size_t>((k + 1) % n)])];
     s += p.x * q.y - q.x * p.y;
   }
   return s;
@@ -33,9 +35,10 @@ struct HalfEdge {
 };
 
 std::string edge_name(const PlaneMesh& m, int a, int b) {
-  const scene::Vec2 p = m.nodes[static_cast<std::size_t>(a)], q = m.nodes[static_cast<std::size_t>(b)];
-  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")-(" + std::to_string(q.x) + ", " +
-         std::to_string(q.y) + ")";
+  const scene::Vec2 p = m.nodes[static_cast<std::size_t>(a)],
+                    q = m.nodes[static_cast<std::size_t>(b)];
+  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")-(" + std::to_string(q.x) +
+         ", " + std::to_string(q.y) + ")";
 }
 
 }  // namespace
@@ -49,15 +52,17 @@ ExtrudedLayer extrude_layer(const PlaneMesh& m) {
     auto& c = layer.cells[i];
     const int n = corner_count(c);
     const double area2 = twice_signed_area(m, c);
-    if (!(area2 != 0.0)) throw scene::RunError("gmsh produced a cell of zero area (cell " + std::to_string(i) + ")");
+    if (!(area2 != 0.0))
+      throw scene::RunError("gmsh produced a cell of zero area (cell " + std::to_string(i) + ")");
     if (area2 < 0.0) std::reverse(c.begin(), c.begin() + n);
     for (int k = 0; k < n; ++k) {
       const int a = c[static_cast<std::size_t>(k)], b = c[static_cast<std::size_t>((k + 1) % n)];
       half.push_back({edge_key(a, b), static_cast<int>(i), a, b});
     }
   }
-  std::sort(half.begin(), half.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.cell < y.cell; });
+  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.key != y.key ? x.key < y.key : x.cell < y.cell;
+  });
 
   std::unordered_map<std::uint64_t, Patch> patch_of;
   patch_of.reserve(m.boundary.size());
@@ -76,20 +81,24 @@ ExtrudedLayer extrude_layer(const PlaneMesh& m) {
       ++boundary_faces;
     } else if (j - i == 2 && half[i + 1].a == h.b && half[i + 1].b == h.a) {
       if (patch_of.count(h.key))
-        throw scene::RunError("meshgen: boundary edge " + edge_name(m, h.a, h.b) + " lies between two cells");
+        throw scene::RunError("meshgen: boundary edge " + edge_name(m, h.a, h.b) +
+                              " lies between two cells");
       layer.internal.push_back({h.cell, half[i + 1].cell, h.a, h.b});
     } else {
       throw scene::RunError("meshgen: mesh edge " + edge_name(m, h.a, h.b) + " is shared by " +
-                            std::to_string(j - i) + " cells or traversed twice the same way (overlapping cells)");
+                            std::to_string(j - i) +
+                            " cells or traversed twice the same way (overlapping cells)");
     }
     i = j;
   }
   if (boundary_faces != patch_of.size())
-    throw scene::RunError("meshgen: " + std::to_string(m.boundary.size()) + " boundary edges from gmsh, " +
-                          std::to_string(boundary_faces) + " on the mesh's boundary");
-  std::sort(layer.internal.begin(), layer.internal.end(), [](const LayerFace& x, const LayerFace& y) {
-    return x.owner != y.owner ? x.owner < y.owner : x.neighbour < y.neighbour;
-  });
+    throw scene::RunError("meshgen: " + std::to_string(m.boundary.size()) +
+                          " boundary edges from gmsh, " + std::to_string(boundary_faces) +
+                          " on the mesh's boundary");
+  std::sort(layer.internal.begin(), layer.internal.end(),
+            [](const LayerFace& x, const LayerFace& y) {
+              return x.owner != y.owner ? x.owner < y.owner : x.neighbour < y.neighbour;
+            });
   return layer;
 }
 

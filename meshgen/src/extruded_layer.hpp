@@ -32,6 +32,8 @@ struct ExtrudedLayer {
 // patch (or a patch edge is not on the boundary).
 ExtrudedLayer extrude_layer(const PlaneMesh& m);
 
-inline int corner_count(const std::array<int, 4>& c) { return c[3] < 0 ? 3 : 4; }
+inline int corner_count(const std::array<int, 4>& c) {
+  return c[3] < 0 ? 3 : 4;
+}
 
 }  // namespace meshgen

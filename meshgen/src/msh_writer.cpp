@@ -24,12 +24,15 @@ void element(TextOut& out, long& id, int type, int tag, const Nodes& nodes) {
 
 }  // namespace
 
-void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double thickness, const std::string& path) {
+void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double thickness,
+                        const std::string& path) {
   const int n = static_cast<int>(m.nodes.size());
   TextOut out((2 * m.nodes.size() + 4 * layer.cells.size() + m.boundary.size()) * kLineChars);
   out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" << kPatchCount + 2 << '\n';
-  for (int p = 0; p < kPatchCount; ++p) out << "2 " << p + 1 << " \"" << patch_name(static_cast<Patch>(p)) << "\"\n";
-  out << "2 " << kFrontAndBackTag << " \"frontAndBack\"\n3 " << kFluidTag << " \"fluid\"\n$EndPhysicalNames\n";
+  for (int p = 0; p < kPatchCount; ++p)
+    out << "2 " << p + 1 << " \"" << patch_name(static_cast<Patch>(p)) << "\"\n";
+  out << "2 " << kFrontAndBackTag << " \"frontAndBack\"\n3 " << kFluidTag
+      << " \"fluid\"\n$EndPhysicalNames\n";
   out << "$Nodes\n" << 2 * m.nodes.size() << '\n';
   long id = 0;
   for (const double z : {0.0, thickness})
@@ -45,10 +48,12 @@ void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double t
   for (const auto& c : layer.cells) {
     if (corner_count(c) == 4) {
       element(out, id, kQuad, kFrontAndBackTag, std::array<int, 4>{c[0], c[3], c[2], c[1]});
-      element(out, id, kQuad, kFrontAndBackTag, std::array<int, 4>{c[0] + n, c[1] + n, c[2] + n, c[3] + n});
+      element(out, id, kQuad, kFrontAndBackTag,
+              std::array<int, 4>{c[0] + n, c[1] + n, c[2] + n, c[3] + n});
     } else {
       element(out, id, kTriangle, kFrontAndBackTag, std::array<int, 3>{c[0], c[2], c[1]});
-      element(out, id, kTriangle, kFrontAndBackTag, std::array<int, 3>{c[0] + n, c[1] + n, c[2] + n});
+      element(out, id, kTriangle, kFrontAndBackTag,
+              std::array<int, 3>{c[0] + n, c[1] + n, c[2] + n});
     }
   }
   for (const auto& c : layer.cells) {
@@ -56,7 +61,8 @@ void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double t
       element(out, id, kHexahedron, kFluidTag,
               std::array<int, 8>{c[0], c[1], c[2], c[3], c[0] + n, c[1] + n, c[2] + n, c[3] + n});
     else
-      element(out, id, kPrism, kFluidTag, std::array<int, 6>{c[0], c[1], c[2], c[0] + n, c[1] + n, c[2] + n});
+      element(out, id, kPrism, kFluidTag,
+              std::array<int, 6>{c[0], c[1], c[2], c[0] + n, c[1] + n, c[2] + n});
   }
   out << "$EndElements\n";
   scene::write_file_atomic(path, out.str());

@@ -9,6 +9,7 @@
 
 namespace meshgen {
 
-void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double thickness, const std::string& path);
+void write_extruded_msh(const PlaneMesh& m, const ExtrudedLayer& layer, double thickness,
+                        const std::string& path);
 
 }  // namespace meshgen

@@ -14,7 +14,8 @@ constexpr std::size_t kPointChars = 64, kFaceChars = 48, kLabelChars = 8;
 
 const char* const kLocation = "constant/polyMesh";
 
-std::string header(const std::string& cls, const std::string& object, const std::string& note = {}) {
+std::string header(const std::string& cls, const std::string& object,
+                   const std::string& note = {}) {
   std::string h = foam_header(cls, object, kLocation);
   if (!note.empty()) h.insert(h.find("    location"), "    note        \"" + note + "\";\n");
   return h + "\n";
@@ -48,7 +49,8 @@ void add_front_and_back(FaceLists& f, const ExtrudedLayer& layer, int n) {
     f.faces << k << '(';
     for (int j = k - 1; j >= 0; --j) f.faces << c[static_cast<std::size_t>(j)] << (j ? ' ' : ')');
     f.faces << '\n' << k << '(';
-    for (int j = 0; j < k; ++j) f.faces << c[static_cast<std::size_t>(j)] + n << (j + 1 < k ? ' ' : ')');
+    for (int j = 0; j < k; ++j)
+      f.faces << c[static_cast<std::size_t>(j)] + n << (j + 1 < k ? ' ' : ')');
     f.faces << '\n';
     f.owner << i << '\n' << i << '\n';
     f.count += 2;
@@ -72,10 +74,11 @@ void write_poly_mesh(const PlaneMesh& m, const ExtrudedLayer& layer, double thic
   scene::make_dirs(dir);
   for (int p = 0; p < kPatchCount; ++p) {
     bool listed = false;
-    for (const FoamPatch& fp : patches) listed = listed || (fp.edges && static_cast<int>(*fp.edges) == p);
+    for (const FoamPatch& fp : patches)
+      listed = listed || (fp.edges && static_cast<int>(*fp.edges) == p);
     if (!layer.boundary[static_cast<std::size_t>(p)].empty() && !listed)
-      throw scene::RunError("meshgen: boundary faces on patch '" + patch_name(static_cast<Patch>(p)) +
-                            "', which the case does not list");
+      throw scene::RunError("meshgen: boundary faces on patch '" +
+                            patch_name(static_cast<Patch>(p)) + "', which the case does not list");
   }
   write_points(m, thickness, dir);
 
@@ -93,27 +96,33 @@ void write_poly_mesh(const PlaneMesh& m, const ExtrudedLayer& layer, double thic
   for (const FoamPatch& fp : patches) {
     const long start = f.count;
     if (fp.edges) {
-      for (const LayerFace& face : layer.boundary[static_cast<std::size_t>(*fp.edges)]) add_lateral(f, face, n);
+      for (const LayerFace& face : layer.boundary[static_cast<std::size_t>(*fp.edges)])
+        add_lateral(f, face, n);
     } else {
       add_front_and_back(f, layer, n);
     }
     boundary << "    " << fp.name << "\n    {\n        type            " << fp.type << ";\n";
-    if (fp.type != "patch") boundary << "        inGroups        List<word> 1(" << fp.type << ");\n";
-    boundary << "        nFaces          " << f.count - start << ";\n        startFace       " << start
-             << ";\n    }\n";
+    if (fp.type != "patch")
+      boundary << "        inGroups        List<word> 1(" << fp.type << ");\n";
+    boundary << "        nFaces          " << f.count - start << ";\n        startFace       "
+             << start << ";\n    }\n";
   }
   boundary << ")\n";
 
-  const std::string note = "nPoints:" + std::to_string(2 * n) + "  nCells:" + std::to_string(layer.cells.size()) +
-                           "  nFaces:" + std::to_string(f.count) + "  nInternalFaces:" + std::to_string(internal);
+  const std::string note =
+      "nPoints:" + std::to_string(2 * n) + "  nCells:" + std::to_string(layer.cells.size()) +
+      "  nFaces:" + std::to_string(f.count) + "  nInternalFaces:" + std::to_string(internal);
   TextOut text(f.faces.str().size() + 1024);
   text << header("faceList", "faces") << f.count << "\n(\n" << f.faces.str() << ")\n";
   scene::write_file_atomic(dir + "/faces", text.str());
-  scene::write_file_atomic(dir + "/owner",
-                           header("labelList", "owner", note) + std::to_string(f.count) + "\n(\n" + f.owner.str() + ")\n");
+  scene::write_file_atomic(dir + "/owner", header("labelList", "owner", note) +
+                                               std::to_string(f.count) + "\n(\n" + f.owner.str() +
+                                               ")\n");
   scene::write_file_atomic(dir + "/neighbour", header("labelList", "neighbour", note) +
-                                                   std::to_string(internal) + "\n(\n" + f.neighbour.str() + ")\n");
-  scene::write_file_atomic(dir + "/boundary", header("polyBoundaryMesh", "boundary") + boundary.str());
+                                                   std::to_string(internal) + "\n(\n" +
+                                                   f.neighbour.str() + ")\n");
+  scene::write_file_atomic(dir + "/boundary",
+                           header("polyBoundaryMesh", "boundary") + boundary.str());
 }
 
 }  // namespace meshgen

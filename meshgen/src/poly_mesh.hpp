@@ -13,8 +13,8 @@ namespace meshgen {
 
 struct FoamPatch {
   std::string name;
-  std::string type;           // patch, wall, symmetryPlane, empty
-  std::optional<Patch> edges; // the lateral faces over these edges; none: the front and back faces
+  std::string type;            // patch, wall, symmetryPlane, empty
+  std::optional<Patch> edges;  // the lateral faces over these edges; none: the front and back faces
 };
 
 // meshgen's patches in the order gmshToFoam gave them (so cases and logs

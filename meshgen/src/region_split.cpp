@@ -19,7 +19,8 @@ constexpr double kCutFractions[] = {0.5, 0.45, 0.55, 0.4, 0.6, 0.35, 0.65};
 constexpr double kEndClearance = 1e-3;
 
 // x where the cumulative estimated cell count reaches each fraction.
-std::vector<double> balanced_cuts(const FluidRegion& region, const std::function<double(Vec2)>& size) {
+std::vector<double> balanced_cuts(const FluidRegion& region,
+                                  const std::function<double(Vec2)>& size) {
   const scene::Domain& d = region.domain;
   const double dx = d.width() / kBalanceLattice, dy = d.height() / kBalanceLattice;
   std::vector<double> column(kBalanceLattice, 0.0);
@@ -48,8 +49,12 @@ std::vector<double> balanced_cuts(const FluidRegion& region, const std::function
   return out;
 }
 
-double min_x(const BoundaryCurve& c) { return std::min(c.a.x, c.b.x); }
-double max_x(const BoundaryCurve& c) { return std::max(c.a.x, c.b.x); }
+double min_x(const BoundaryCurve& c) {
+  return std::min(c.a.x, c.b.x);
+}
+double max_x(const BoundaryCurve& c) {
+  return std::max(c.a.x, c.b.x);
+}
 
 // An arc's x-extent (its chord's, widened by the radius when it may bulge
 // past either end: conservative).
@@ -67,7 +72,8 @@ std::optional<RegionPieces> split_at(const FluidRegion& region, double x, double
     const BoundaryCurve& c = outer[k];
     const auto [lo, hi] = x_extent(c);
     if (hi < x - clearance || lo > x + clearance) continue;
-    if (c.is_arc || std::abs(c.a.x - x) <= clearance || std::abs(c.b.x - x) <= clearance) return std::nullopt;
+    if (c.is_arc || std::abs(c.a.x - x) <= clearance || std::abs(c.b.x - x) <= clearance)
+      return std::nullopt;
     const double t = (x - c.a.x) / (c.b.x - c.a.x);
     crossed.push_back(k);
     at.push_back({x, c.a.y + t * (c.b.y - c.a.y)});
@@ -88,7 +94,9 @@ std::optional<RegionPieces> split_at(const FluidRegion& region, double x, double
     out.b = b;
     return PieceCurve{out, false};
   };
-  const auto cut = [](Vec2 a, Vec2 b) { return PieceCurve{BoundaryCurve{false, a, b, {}, true, Patch::body}, true}; };
+  const auto cut = [](Vec2 a, Vec2 b) {
+    return PieceCurve{BoundaryCurve{false, a, b, {}, true, Patch::body}, true};
+  };
   std::vector<PieceCurve> first{part(outer[i], p, outer[i].b)};
   for (std::size_t k = i + 1; k < j; ++k) first.push_back({outer[k], false});
   first.push_back(part(outer[j], outer[j].a, q));
@@ -116,7 +124,8 @@ std::optional<RegionPieces> split_at(const FluidRegion& region, double x, double
 
 }  // namespace
 
-std::optional<RegionPieces> split_region(const FluidRegion& region, const std::function<double(Vec2)>& size) {
+std::optional<RegionPieces> split_region(const FluidRegion& region,
+                                         const std::function<double(Vec2)>& size) {
   if (region.loops.empty()) return std::nullopt;
   const double clearance = kEndClearance * region.domain.width();
   for (const double x : balanced_cuts(region, size))

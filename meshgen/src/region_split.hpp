@@ -26,6 +26,7 @@ struct RegionPieces {
 // 1/size^2), or one near it: the cut must cross the outer loop on exactly
 // two straight curves, away from their ends, and pass no hole. nullopt when
 // no such line is found (the region is then meshed whole).
-std::optional<RegionPieces> split_region(const FluidRegion& region, const std::function<double(scene::Vec2)>& size);
+std::optional<RegionPieces> split_region(const FluidRegion& region,
+                                         const std::function<double(scene::Vec2)>& size);
 
 }  // namespace meshgen

@@ -82,12 +82,15 @@ inline PolyMeshFile read_poly_mesh(const std::string& case_dir) {
   for (const long c : m.owner) m.cells = std::max(m.cells, c + 1);
   const std::string text = scene::read_file(dir + "boundary");
   const std::regex entry(R"((\w+)\s*\{([^}]*)\})");
-  const std::regex type(R"(\btype\s+(\w+);)"), faces(R"(nFaces\s+(\d+);)"), start(R"(startFace\s+(\d+);)");
-  for (auto it = std::sregex_iterator(text.begin() + static_cast<long>(text.find('}')) + 1, text.end(), entry);
+  const std::regex type(R"(\btype\s+(\w+);)"), faces(R"(nFaces\s+(\d+);)"),
+      start(R"(startFace\s+(\d+);)");
+  for (auto it = std::sregex_iterator(text.begin() + static_cast<long>(text.find('}')) + 1,
+                                      text.end(), entry);
        it != std::sregex_iterator(); ++it) {
     const std::string body = (*it)[2].str();
     std::smatch t, f, s;
-    if (!std::regex_search(body, t, type) || !std::regex_search(body, f, faces) || !std::regex_search(body, s, start))
+    if (!std::regex_search(body, t, type) || !std::regex_search(body, f, faces) ||
+        !std::regex_search(body, s, start))
       continue;
     m.patches.push_back({(*it)[1].str(), t[1].str(), std::stol(f[1].str()), std::stol(s[1].str())});
   }
@@ -109,7 +112,9 @@ inline Point3 area_vector(const PolyMeshFile& m, const std::vector<long>& f) {
   return s;
 }
 
-inline double norm(const Point3& s) { return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]); }
+inline double norm(const Point3& s) {
+  return std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+}
 
 // Cell volumes: V = sum over the cell's faces of x0 . S / 3 (S out of the
 // cell), exact for planar faces.
@@ -127,7 +132,8 @@ inline std::vector<double> cell_volumes(const PolyMeshFile& m) {
 
 inline double patch_area(const PolyMeshFile& m, const PolyPatch& p) {
   double a = 0.0;
-  for (long f = p.start; f < p.start + p.faces; ++f) a += norm(area_vector(m, m.faces[static_cast<std::size_t>(f)]));
+  for (long f = p.start; f < p.start + p.faces; ++f)
+    a += norm(area_vector(m, m.faces[static_cast<std::size_t>(f)]));
   return a;
 }
 

@@ -3,6 +3,8 @@
 // .msh as well; gmshToFoam converts that, meshgen's writer the plane mesh.
 // Same cells, volumes, patches and patch areas, both pass checkMesh; so the
 // writer cannot drift from what gmshToFoam made of gmsh's extrusion.
+#include "poly_mesh.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,7 +19,6 @@
 #include "meshgen/size_field.hpp"
 #include "msh_file.hpp"
 #include "msh_writer.hpp"
-#include "poly_mesh.hpp"
 #include "poly_mesh_file.hpp"
 #include "scene/scene.hpp"
 #include "shock_fixtures.hpp"
@@ -64,10 +65,12 @@ Grid mesh_case(const std::string& name, bool strips, const std::string& msh) {
   p.h_max = kHMax * L;
   p.h_body = kHMax * L;
   p.growth = kGrowth;
-  const meshgen::BandLayout band = meshgen::layout_strips(runs, region, {p.h_min, kAnisotropy, p.h_max, p.growth});
+  const meshgen::BandLayout band =
+      meshgen::layout_strips(runs, region, {p.h_min, kAnisotropy, p.h_max, p.growth});
   EXPECT_FALSE(band.strips.empty()) << name << ": no strip laid";
   const meshgen::BandSize size(p, band, region.body.polyline);
-  g.plane = meshgen::mesh_with_gmsh(region, [&size](scene::Vec2 q) { return size(q); }, band.strips, job);
+  g.plane = meshgen::mesh_with_gmsh(
+      region, [&size](scene::Vec2 q) { return size(q); }, band.strips, job);
   return g;
 }
 
@@ -112,7 +115,8 @@ void compare_routes(const std::string& name, bool strips) {
   EXPECT_NEAR(tb / ta, 1.0, kTotalTolerance) << name;
   std::sort(va.begin(), va.end());
   std::sort(vb.begin(), vb.end());
-  for (std::size_t i = 0; i < va.size(); ++i) ASSERT_NEAR(vb[i], va[i], kCellTolerance * va[i]) << name << " cell " << i;
+  for (std::size_t i = 0; i < va.size(); ++i)
+    ASSERT_NEAR(vb[i], va[i], kCellTolerance * va[i]) << name << " cell " << i;
 
   // Same patches, types, order, face counts and areas.
   ASSERT_EQ(a.patches.size(), b.patches.size()) << name;
@@ -122,19 +126,24 @@ void compare_routes(const std::string& name, bool strips) {
     EXPECT_EQ(b.patches[p].faces, a.patches[p].faces) << name << " " << a.patches[p].name;
     EXPECT_GT(b.patches[p].faces, 0) << name << " " << a.patches[p].name;
     const double area = meshgen_test::patch_area(a, a.patches[p]);
-    EXPECT_NEAR(meshgen_test::patch_area(b, b.patches[p]), area, kAreaTolerance * area) << name << " " << a.patches[p].name;
+    EXPECT_NEAR(meshgen_test::patch_area(b, b.patches[p]), area, kAreaTolerance * area)
+        << name << " " << a.patches[p].name;
   }
   // OpenFOAM's order: internal faces by owner, then neighbour; owner below neighbour.
   for (std::size_t f = 0; f < b.neighbour.size(); ++f) {
     ASSERT_LT(b.owner[f], b.neighbour[f]) << name << " face " << f;
     if (f > 0) {
-      ASSERT_TRUE(b.owner[f - 1] < b.owner[f] || (b.owner[f - 1] == b.owner[f] && b.neighbour[f - 1] < b.neighbour[f]))
+      ASSERT_TRUE(b.owner[f - 1] < b.owner[f] ||
+                  (b.owner[f - 1] == b.owner[f] && b.neighbour[f - 1] < b.neighbour[f]))
           << name << " face " << f;
     }
   }
   // z from 0 to the thickness, as gmshToFoam's.
   double zmin = 1e300, zmax = -1e300;
-  for (const auto& p : b.points) { zmin = std::min(zmin, p[2]); zmax = std::max(zmax, p[2]); }
+  for (const auto& p : b.points) {
+    zmin = std::min(zmin, p[2]);
+    zmax = std::max(zmax, p[2]);
+  }
   EXPECT_EQ(zmin, 0.0);
   EXPECT_EQ(zmax, kThickness);
 
@@ -145,7 +154,8 @@ void compare_routes(const std::string& name, bool strips) {
   const auto count = [](const std::string& path) {
     const meshgen_test::MshFile f = meshgen_test::read_msh(path);
     std::map<int, std::string> name_of;
-    for (const auto& [n, tag] : f.physical) name_of[tag] = n;  // tags per dimension: 2D and 3D differ by type
+    for (const auto& [n, tag] : f.physical)
+      name_of[tag] = n;  // tags per dimension: 2D and 3D differ by type
     std::map<std::pair<int, std::string>, long> out;
     for (const auto& e : f.elements) {
       const bool volume = meshgen_test::is_volume(e);
@@ -161,10 +171,18 @@ void compare_routes(const std::string& name, bool strips) {
 
 }  // namespace
 
-TEST(PolyMesh, WedgeMatchesGmshToFoam) { compare_routes("wedge_M3_10", false); }
-TEST(PolyMesh, DiscArcsMatchGmshToFoam) { compare_routes("disc_M4", false); }
-TEST(PolyMesh, ApolloMatchesGmshToFoam) { compare_routes("apollo_M5", false); }
-TEST(PolyMesh, ShockStripsMatchGmshToFoam) { compare_routes("wedge_M3_10", true); }
+TEST(PolyMesh, WedgeMatchesGmshToFoam) {
+  compare_routes("wedge_M3_10", false);
+}
+TEST(PolyMesh, DiscArcsMatchGmshToFoam) {
+  compare_routes("disc_M4", false);
+}
+TEST(PolyMesh, ApolloMatchesGmshToFoam) {
+  compare_routes("apollo_M5", false);
+}
+TEST(PolyMesh, ShockStripsMatchGmshToFoam) {
+  compare_routes("wedge_M3_10", true);
+}
 
 // The region cut in two for gmsh's threads (region_split.hpp): the cut's
 // edges become internal faces, the grid covers the region exactly (a wedge
@@ -176,10 +194,12 @@ TEST(PolyMesh, SplitRegionIsOneClosedGrid) {
   meshgen::GmshJob job;
   job.thickness = kThickness;
   job.threads = 2;
-  const meshgen::PlaneMesh plane = meshgen::mesh_with_gmsh(region, meshgen::SizeField(kH * region.length_scale), job);
+  const meshgen::PlaneMesh plane =
+      meshgen::mesh_with_gmsh(region, meshgen::SizeField(kH * region.length_scale), job);
   ASSERT_EQ(plane.pieces, 2);
   meshgen::write_control_dict(dir);
-  meshgen::write_poly_mesh(plane, meshgen::extrude_layer(plane), kThickness, meshgen::foam_patches(true), dir);
+  meshgen::write_poly_mesh(plane, meshgen::extrude_layer(plane), kThickness,
+                           meshgen::foam_patches(true), dir);
   const auto m = meshgen_test::read_poly_mesh(dir);
   double volume = 0.0;
   for (const double v : meshgen_test::cell_volumes(m)) {

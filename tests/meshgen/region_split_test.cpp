@@ -1,20 +1,22 @@
 // The region cut in two for gmsh's threads: closed pieces on either side of
 // a vertical cut that together are the region, balanced by estimated cells.
+#include "region_split.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "meshgen/fluid_region.hpp"
-#include "region_split.hpp"
 #include "shock_fixtures.hpp"
 
 namespace {
 
 using scene::Vec2;
 
-constexpr double kExact = 1e-12;        // shared end points (scene units)
-constexpr double kAreaTolerance = 1e-6; // pieces' areas against the region's (relative, arc sampling)
-constexpr double kSag = 1e-5;           // arc sampling for the areas (scene units)
+constexpr double kExact = 1e-12;  // shared end points (scene units)
+constexpr double kAreaTolerance =
+    1e-6;                      // pieces' areas against the region's (relative, arc sampling)
+constexpr double kSag = 1e-5;  // arc sampling for the areas (scene units)
 // Uniform size: the cut halves the area to the balance lattice's resolution
 // (1/200 of the width) and the end clearance.
 constexpr double kBalanceTolerance = 0.02;
@@ -25,7 +27,8 @@ double loop_area(const std::vector<meshgen::PieceCurve>& loop) {
   double a = 0.0;
   for (const meshgen::PieceCurve& pc : loop) {
     const std::vector<Vec2> pts = meshgen::sample_curve(pc.curve, kSag);
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k) a += 0.5 * (pts[k].x * pts[k + 1].y - pts[k + 1].x * pts[k].y);
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+      a += 0.5 * (pts[k].x * pts[k + 1].y - pts[k + 1].x * pts[k].y);
   }
   return a;
 }
@@ -63,8 +66,10 @@ TEST(RegionSplit, PiecesAreClosedOnEitherSideAndMakeTheRegion) {
           const auto& c = loop[k].curve;
           EXPECT_NEAR(scene::norm(c.b - loop[(k + 1) % loop.size()].curve.a), 0.0, kExact) << name;
           for (const Vec2 p : meshgen::sample_curve(c, kSag)) {
-            if (side == 0) EXPECT_LE(p.x, pieces->x + kExact) << name;
-            else EXPECT_GE(p.x, pieces->x - kExact) << name;
+            if (side == 0)
+              EXPECT_LE(p.x, pieces->x + kExact) << name;
+            else
+              EXPECT_GE(p.x, pieces->x - kExact) << name;
           }
           if (loop[k].cut) {
             ++cuts;
@@ -74,7 +79,8 @@ TEST(RegionSplit, PiecesAreClosedOnEitherSideAndMakeTheRegion) {
         }
         total += loop_area(loop);
       }
-      EXPECT_GT(loop_area(pieces->loops[side].front()), 0.0) << name << ": outer loop not counter-clockwise";
+      EXPECT_GT(loop_area(pieces->loops[side].front()), 0.0)
+          << name << ": outer loop not counter-clockwise";
     }
     EXPECT_EQ(cuts, 2) << name;  // once in each piece
     const double area = region_area(r);

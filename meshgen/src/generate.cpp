@@ -55,8 +55,16 @@ constexpr double kClipResolutionCells = 0.25;
 // (points closer than 1e-10 body lengths are merged).
 constexpr double kMaxCells = 5e6;
 constexpr double kMinCellSize = 1e-5;
-// gmsh meshes the two pieces of a split region at once (region_split.hpp):
-// the 2 cores meshgen's time budget is set for.
+// Large grids are meshed as pieces between vertical cuts (region_split.hpp),
+// one per kCellsPerPiece estimated cells (the size field's integral, about
+// 2/3 of a recombined grid's cells), up to kMaxPieces, on kGmshThreads
+// threads (the 2 cores meshgen's time budget is set for). gmsh's 2D
+// meshing costs more than linearly in a surface's cells: wedge_M3_10 at
+// 108k cells, gmsh CPU s (min of 3, loaded host) 9.5 whole, 8.2 in 2
+// pieces, 6.6 in 4, 5.2 in 8 (docs/meshgen.md). Grids below 2
+// kCellsPerPiece stay whole, as before the cuts.
+constexpr double kCellsPerPiece = 8000.0;
+constexpr int kMaxPieces = 8;
 constexpr int kGmshThreads = 2;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
 constexpr double kZoomCells = 12.0;
@@ -329,6 +337,8 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
     const SizeField field = plan.field(m.sizing, region);
     m.estimate = estimate_cells(field, region);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
+    job.pieces = static_cast<int>(std::clamp(std::floor(m.estimate * calibration / kCellsPerPiece), 1.0,
+                                             static_cast<double>(kMaxPieces)));
     check_estimate(where, m.estimate * calibration,
                    plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_min, flow_area);
     stop_if_interrupted("before meshing", out_dir);

@@ -206,27 +206,27 @@ int add_curve(const BoundaryCurve& c, PointTable& points) {
   return gmsh::model::geo::addCircleArc(a, centre, b);
 }
 
-// The region as two plane surfaces sharing the cut (region_split.hpp), for
-// gmsh to mesh on two threads. Adds the boundary curves to `boundary`.
+// The region as plane surfaces sharing the cuts (region_split.hpp), for
+// gmsh to mesh on several threads. Adds the boundary curves to `boundary`.
 std::vector<int> add_pieces(const RegionPieces& pieces, PointTable& points, std::vector<TaggedCurve>& boundary) {
   std::vector<int> plane;
-  int cut = 0;
-  Vec2 cut_start;
+  std::vector<std::pair<int, Vec2>> cuts(pieces.x.size());  // curve tag, start point
   for (const auto& loops : pieces.loops) {
     std::vector<int> loop_tags;
     for (const auto& loop : loops) {
       std::vector<int> curves;
       for (const PieceCurve& pc : loop) {
-        if (!pc.cut) {
+        if (pc.cut < 0) {
           curves.push_back(add_curve(pc.curve, points));
           boundary.push_back({curves.back(), pc.curve.patch});
-        } else if (cut == 0) {
-          cut = add_curve(pc.curve, points);
-          cut_start = pc.curve.a;
-          curves.push_back(cut);
-        } else {
-          curves.push_back(pc.curve.a == cut_start ? cut : -cut);  // the other piece runs it backwards
+          continue;
         }
+        auto& [tag, start] = cuts[static_cast<std::size_t>(pc.cut)];
+        if (tag == 0) {
+          tag = add_curve(pc.curve, points);
+          start = pc.curve.a;
+        }
+        curves.push_back(pc.curve.a == start ? tag : -tag);  // the other piece runs it backwards
       }
       loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
     }
@@ -247,7 +247,8 @@ PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
   // would cross) and gmsh's own extrusion is not asked for (it expects one
   // main surface).
   std::optional<RegionPieces> pieces;
-  if (job.threads > 1 && strips.empty() && job.extruded_msh_path.empty()) pieces = split_region(region, size);
+  if (job.pieces > 1 && strips.empty() && job.extruded_msh_path.empty())
+    pieces = split_region(region, size, job.pieces);
   if (pieces) {
     plane = add_pieces(*pieces, points, boundary);
   } else {

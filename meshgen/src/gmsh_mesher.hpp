@@ -35,8 +35,9 @@ struct GmshJob {
   bool recombine = true;
   bool frontal = false;   // Frontal-Delaunay instead of Delaunay
   int smoothing = 0;      // Laplacian smoothing passes
-  // > 1: the region is cut in two where it can be (region_split.hpp) and
-  // gmsh meshes the pieces on this many threads.
+  // pieces > 1: the region is cut into up to this many pieces where it can
+  // be (region_split.hpp), which gmsh meshes on `threads` threads.
+  int pieces = 1;
   int threads = 1;
   double thickness = 0.05;  // z-extent of the one-cell layer
   // When set, gmsh itself also extrudes the mesh one cell thick, names the

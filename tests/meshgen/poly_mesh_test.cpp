@@ -184,7 +184,7 @@ TEST(PolyMesh, ShockStripsMatchGmshToFoam) {
   compare_routes("wedge_M3_10", true);
 }
 
-// The region cut in two for gmsh's threads (region_split.hpp): the cut's
+// The region cut into pieces for gmsh's threads (region_split.hpp): the cut's
 // edges become internal faces, the grid covers the region exactly (a wedge
 // region is a polygon: its area is exact) and passes checkMesh.
 TEST(PolyMesh, SplitRegionIsOneClosedGrid) {
@@ -194,9 +194,10 @@ TEST(PolyMesh, SplitRegionIsOneClosedGrid) {
   meshgen::GmshJob job;
   job.thickness = kThickness;
   job.threads = 2;
+  job.pieces = 3;
   const meshgen::PlaneMesh plane =
       meshgen::mesh_with_gmsh(region, meshgen::SizeField(kH * region.length_scale), job);
-  ASSERT_EQ(plane.pieces, 2);
+  ASSERT_EQ(plane.pieces, 3);
   meshgen::write_control_dict(dir);
   meshgen::write_poly_mesh(plane, meshgen::extrude_layer(plane), kThickness,
                            meshgen::foam_patches(true), dir);

@@ -1,5 +1,5 @@
-// The region cut in two for gmsh's threads: closed pieces on either side of
-// a vertical cut that together are the region, balanced by estimated cells.
+// The region cut for gmsh's threads: closed pieces between vertical cuts
+// that together are the region, balanced by estimated cells.
 #include "region_split.hpp"
 
 #include <gtest/gtest.h>
@@ -37,7 +37,7 @@ double region_area(const meshgen::FluidRegion& r) {
   double a = 0.0;
   for (const auto& loop : r.loops) {
     std::vector<meshgen::PieceCurve> pcs;
-    for (const auto& c : loop) pcs.push_back({c, false});
+    for (const auto& c : loop) pcs.push_back({c, -1});
     a += loop_area(pcs);
   }
   return a;
@@ -45,50 +45,52 @@ double region_area(const meshgen::FluidRegion& r) {
 
 }  // namespace
 
-TEST(RegionSplit, PiecesAreClosedOnEitherSideAndMakeTheRegion) {
-  for (const char* name : kCases) {
-    const scene::Scene s = scene::load_scene(meshgen_test::case_path(name));
-    const meshgen::FluidRegion r = meshgen::make_fluid_region(s);
-    const auto pieces = meshgen::split_region(r, [](Vec2) { return 1.0; });
-    // Wedges always split (the cut crosses the top and the wedge face);
-    // blunt bodies may not, then they are meshed whole.
-    const bool wedge = std::string(name).rfind("wedge", 0) == 0;
-    if (wedge) {
-      ASSERT_TRUE(pieces) << name;
-    }
-    if (!pieces) continue;
-    double total = 0.0;
-    int cuts = 0;
-    for (int side = 0; side < 2; ++side) {
-      ASSERT_FALSE(pieces->loops[side].empty()) << name;
-      for (const auto& loop : pieces->loops[side]) {
-        for (std::size_t k = 0; k < loop.size(); ++k) {
-          const auto& c = loop[k].curve;
-          EXPECT_NEAR(scene::norm(c.b - loop[(k + 1) % loop.size()].curve.a), 0.0, kExact) << name;
-          for (const Vec2 p : meshgen::sample_curve(c, kSag)) {
-            if (side == 0)
-              EXPECT_LE(p.x, pieces->x + kExact) << name;
-            else
-              EXPECT_GE(p.x, pieces->x - kExact) << name;
-          }
-          if (loop[k].cut) {
-            ++cuts;
-            EXPECT_NEAR(c.a.x, pieces->x, kExact) << name;
-            EXPECT_NEAR(c.b.x, pieces->x, kExact) << name;
-          }
-        }
-        total += loop_area(loop);
+TEST(RegionSplit, PiecesAreClosedBetweenTheirCutsAndMakeTheRegion) {
+  for (const int n : {2, 4})
+    for (const char* name : kCases) {
+      const scene::Scene s = scene::load_scene(meshgen_test::case_path(name));
+      const meshgen::FluidRegion r = meshgen::make_fluid_region(s);
+      const auto pieces = meshgen::split_region(r, [](Vec2) { return 1.0; }, n);
+      // Wedges always split (the cuts cross the top and the wedge face or
+      // the symmetry line); blunt bodies may not, then they are meshed whole.
+      const bool wedge = std::string(name).rfind("wedge", 0) == 0;
+      if (wedge) {
+        ASSERT_TRUE(pieces) << name;
+        EXPECT_EQ(pieces->loops.size(), static_cast<std::size_t>(n)) << name;
       }
-      EXPECT_GT(loop_area(pieces->loops[side].front()), 0.0)
-          << name << ": outer loop not counter-clockwise";
+      if (!pieces) continue;
+      ASSERT_EQ(pieces->loops.size(), pieces->x.size() + 1) << name;
+      double total = 0.0;
+      std::size_t cut_curves = 0;
+      const double area = region_area(r);
+      for (std::size_t k = 0; k < pieces->loops.size(); ++k) {
+        const double lo = k == 0 ? -1e300 : pieces->x[k - 1], hi = k == pieces->x.size() ? 1e300 : pieces->x[k];
+        ASSERT_FALSE(pieces->loops[k].empty()) << name;
+        double piece_area = 0.0;
+        for (const auto& loop : pieces->loops[k]) {
+          for (std::size_t c = 0; c < loop.size(); ++c) {
+            const auto& curve = loop[c].curve;
+            EXPECT_NEAR(scene::norm(curve.b - loop[(c + 1) % loop.size()].curve.a), 0.0, kExact) << name;
+            for (const Vec2 p : meshgen::sample_curve(curve, kSag)) {
+              EXPECT_GE(p.x, lo - kExact) << name << " piece " << k;
+              EXPECT_LE(p.x, hi + kExact) << name << " piece " << k;
+            }
+            if (loop[c].cut >= 0) {
+              ++cut_curves;
+              const double x = pieces->x[static_cast<std::size_t>(loop[c].cut)];
+              EXPECT_NEAR(curve.a.x, x, kExact) << name;
+              EXPECT_NEAR(curve.b.x, x, kExact) << name;
+            }
+          }
+          piece_area += loop_area(loop);
+        }
+        EXPECT_GT(loop_area(pieces->loops[k].front()), 0.0) << name << ": outer loop not counter-clockwise";
+        if (wedge) {
+          EXPECT_NEAR(piece_area / area, 1.0 / n, kBalanceTolerance) << name << " piece " << k;
+        }
+        total += piece_area;
+      }
+      EXPECT_EQ(cut_curves, 2 * pieces->x.size()) << name;  // each cut in the pieces either side
+      EXPECT_NEAR(total / area, 1.0, kAreaTolerance) << name;
     }
-    EXPECT_EQ(cuts, 2) << name;  // once in each piece
-    const double area = region_area(r);
-    EXPECT_NEAR(total / area, 1.0, kAreaTolerance) << name;
-    double left = 0.0;
-    for (const auto& loop : pieces->loops[0]) left += loop_area(loop);
-    if (wedge) {
-      EXPECT_NEAR(left / area, 0.5, kBalanceTolerance) << name;
-    }
-  }
 }

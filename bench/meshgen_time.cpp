@@ -2,8 +2,8 @@
 // (default 100000), clustered (round a synthetic predicted shock: exact
 // oblique shock for wedges, Billig's shape for blunt bodies) and uniform.
 // Prints one row per grid: cells, gmsh wall and CPU seconds for the final
-// mesh (geometry, meshing, extrusion, .msh), whole-run wall seconds
-// (target iterations, gmshToFoam, checkMesh, plots) and checkMesh figures.
+// mesh (geometry, 2D meshing), whole-run wall seconds (target iterations,
+// polyMesh and mesh.msh writing, checkMesh, plots) and checkMesh figures.
 //   build/bench/meshgen_time [N] [repeats]
 #include <algorithm>
 #include <cmath>

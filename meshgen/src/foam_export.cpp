@@ -28,21 +28,23 @@ bool is_quality_warning(const std::string& failure_line) {
   return false;
 }
 
+}  // namespace
+
 std::string foam_header(const std::string& cls, const std::string& object, const std::string& location) {
   return "FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       " + cls +
          ";\n    location    \"" + location + "\";\n    object      " + object + ";\n}\n";
 }
 
-}  // namespace
-
 void write_control_dict(const std::string& case_dir) {
   scene::make_dirs(case_dir + "/system");
   scene::write_file_atomic(case_dir + "/system/controlDict",
                            foam_header("dictionary", "controlDict", "system") +
-                               "// Written by meshgen so that gmshToFoam and checkMesh accept the case.\n"
+                               "// Written by meshgen so that OpenFOAM applications accept the case.\n"
                                "application     checkMesh;\nstartFrom       startTime;\nstartTime       0;\n"
                                "stopAt          endTime;\nendTime         1;\ndeltaT          1;\n"
-                               "writeControl    timeStep;\nwriteInterval   1;\nwriteFormat     ascii;\n");
+                               "writeControl    timeStep;\nwriteInterval   1;\nwriteFormat     ascii;\n"
+                               // gmshToFoam (the tests' reference route) then writes points exactly.
+                               "writePrecision  17;\n");
   // checkMesh builds an fvMesh, which reads these (content irrelevant to it).
   scene::write_file_atomic(case_dir + "/system/fvSchemes",
                            foam_header("dictionary", "fvSchemes", "system") +

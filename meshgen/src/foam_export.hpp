@@ -1,5 +1,7 @@
 #pragma once
-// OpenFOAM side of meshgen (private): gmshToFoam, patch types, checkMesh.
+// OpenFOAM side of meshgen (private): the case files, checkMesh, and the
+// gmshToFoam route (gmshToFoam, patch types) the direct polyMesh writer is
+// tested against.
 // Each application runs through the shared launcher (scene/foam.hpp) and
 // logs to CASE/log.<application>, as OpenFOAM's RunFunctions do.
 #include <map>
@@ -21,8 +23,10 @@ struct CheckMeshReport {
   double cpu_seconds = 0;            // of the checkMesh run (0 from parse_check_mesh)
 };
 
-// Minimal system/{controlDict,fvSchemes,fvSolution}: gmshToFoam and
-// checkMesh refuse a case without them.
+// The FoamFile header of an ASCII OpenFOAM file.
+std::string foam_header(const std::string& cls, const std::string& object, const std::string& location);
+// Minimal system/{controlDict,fvSchemes,fvSolution}: checkMesh (and
+// gmshToFoam) refuse a case without them.
 void write_control_dict(const std::string& case_dir);
 // CASE/mesh.msh -> CASE/constant/polyMesh. RunError naming the log on failure.
 scene::ChildTimes run_gmsh_to_foam(const std::string& case_dir);

@@ -8,9 +8,12 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <functional>
+#include <future>
 #include <optional>
 
 #include "band_strip.hpp"
+#include "extruded_layer.hpp"
 #include "foam_export.hpp"
 #include "gmsh_child.hpp"
 #include "gmsh_mesher.hpp"
@@ -19,7 +22,9 @@
 #include "scene/cpu_clock.hpp"
 #include "meshgen/size_field.hpp"
 #include "meshgen/shock_extension.hpp"
+#include "msh_writer.hpp"
 #include "plot.hpp"
+#include "poly_mesh.hpp"
 #include "scene/errors.hpp"
 #include "scene/cli.hpp"
 #include "scene/io.hpp"
@@ -50,6 +55,17 @@ constexpr double kClipResolutionCells = 0.25;
 // (points closer than 1e-10 body lengths are merged).
 constexpr double kMaxCells = 5e6;
 constexpr double kMinCellSize = 1e-5;
+// Large grids are meshed as pieces between vertical cuts (region_split.hpp),
+// one per kCellsPerPiece estimated cells (the size field's integral, about
+// 2/3 of a recombined grid's cells), up to kMaxPieces, on kGmshThreads
+// threads (the 2 cores meshgen's time budget is set for). gmsh's 2D
+// meshing costs more than linearly in a surface's cells: wedge_M3_10 at
+// 108k cells, gmsh CPU s (min of 3, loaded host) 9.5 whole, 8.2 in 2
+// pieces, 6.6 in 4, 5.2 in 8 (docs/meshgen.md). Grids below 2
+// kCellsPerPiece stay whole, as before the cuts.
+constexpr double kCellsPerPiece = 8000.0;
+constexpr int kMaxPieces = 8;
+constexpr int kGmshThreads = 2;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
 constexpr double kZoomCells = 12.0;
 constexpr double kZoomBands = 3.0;
@@ -272,12 +288,12 @@ void stop_if_interrupted(const std::string& step, const std::string& out_dir) {
     throw scene::RunError("interrupted " + step + "; " + out_dir + " is unchanged");
 }
 
-GmshJob gmsh_job(const scene::MeshParams& mp, const fs::path& stage) {
+GmshJob gmsh_job(const scene::MeshParams& mp) {
   GmshJob job;
   job.recombine = mp.recombine;
   job.frontal = mp.algorithm == "frontal";
   job.smoothing = mp.smoothing;
-  job.msh_path = (stage / "mesh.msh").string();
+  job.threads = kGmshThreads;
   return job;
 }
 
@@ -321,6 +337,8 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
     const SizeField field = plan.field(m.sizing, region);
     m.estimate = estimate_cells(field, region);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
+    job.pieces = static_cast<int>(std::clamp(std::floor(m.estimate * calibration / kCellsPerPiece), 1.0,
+                                             static_cast<double>(kMaxPieces)));
     check_estimate(where, m.estimate * calibration,
                    plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_min, flow_area);
     stop_if_interrupted("before meshing", out_dir);
@@ -380,26 +398,29 @@ CellSizes measure_cell_sizes(const PlaneMesh& mesh, const Sizing& sizing, double
   return out;
 }
 
-// The OpenFOAM case of the staged mesh: gmshToFoam, the patch types, checkMesh.
+// The OpenFOAM case of the staged mesh: constant/polyMesh written directly
+// from the plane mesh, then checkMesh. `meanwhile` (what nothing on the way
+// reads: mesh.msh, the plots) runs on a second thread while checkMesh runs.
 struct FoamCase {
   std::map<std::string, std::string> patch_types;
   CheckMeshReport check;
-  double cpu_seconds = 0.0;  // gmshToFoam and checkMesh
+  double cpu_seconds = 0.0;  // checkMesh
 };
 
-FoamCase export_to_foam(const fs::path& stage, const FluidRegion& region,
-                        const std::string& out_dir) {
+FoamCase export_to_foam(const fs::path& stage, const FluidRegion& region, const PlaneMesh& mesh,
+                        double thickness, const std::string& out_dir,
+                        const std::function<void(const ExtrudedLayer&)>& meanwhile) {
   FoamCase f;
+  const std::vector<FoamPatch> patches = foam_patches(region.domain.symmetric);
+  for (const FoamPatch& p : patches) f.patch_types[p.name] = p.type;
+  const ExtrudedLayer layer = extrude_layer(mesh);
   write_control_dict(stage.string());
-  f.cpu_seconds = run_gmsh_to_foam(stage.string()).cpu_seconds;
-  stop_if_interrupted("after gmshToFoam", out_dir);
-  f.patch_types = {
-      {"inlet", "patch"}, {"outlet", "patch"},
-      {"top", "patch"},   {"bottom", region.domain.symmetric ? "symmetryPlane" : "patch"},
-      {"body", "wall"},   {"frontAndBack", "empty"}};
-  set_patch_types(stage.string(), f.patch_types);
+  write_poly_mesh(mesh, layer, thickness, patches, stage.string());
+  stop_if_interrupted("after writing the OpenFOAM mesh", out_dir);
+  auto side = std::async(std::launch::async, [&] { meanwhile(layer); });
   f.check = run_check_mesh(stage.string());
-  f.cpu_seconds += f.check.cpu_seconds;
+  side.get();
+  f.cpu_seconds = f.check.cpu_seconds;
   return f;
 }
 
@@ -435,16 +456,16 @@ Plots plot_grid(const scene::Scene& s, const Meshed& m, const Plan& plan, const 
 
 nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const FluidRegion& region,
                             const GmshJob& job, const Meshed& m, const CellSizes& sizes,
-                            const FoamCase& foam, const Plots& plots) {
+                            const FoamCase& foam, const Plots& plots, const scene::CpuStopwatch& cpu) {
   const Sizing& sizing = m.sizing;
   const scene::MeshParams& mp = s.mesh;
   nlohmann::json j;
   j["scene"] = s.name;
   j["length_unit"] = "scene coordinates (sizes below); mesh parameters are in body lengths";
   j["body_length"] = region.length_scale;
-  // CPU seconds (load-independent cost): gmsh in this process over all
-  // attempts, plus gmshToFoam and checkMesh as children.
-  j["cpu_seconds"] = m.gmsh_cpu + foam.cpu_seconds;
+  // CPU seconds (load-independent cost): this process and its children
+  // (gmsh over all attempts, checkMesh, plotting) from the start.
+  j["cpu_seconds"] = cpu.seconds();
   j["gmsh_cpu_seconds"] = m.gmsh_cpu;
   j["foam_cpu_seconds"] = foam.cpu_seconds;
   j["quads"] = m.mesh.quads;
@@ -475,6 +496,7 @@ nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const Fluid
   j["target_cells"] = plan.target ? nlohmann::json(*plan.target) : nlohmann::json(nullptr);
   j["estimated_cells"] = m.estimate;
   j["mesh_attempts"] = m.attempts;
+  j["gmsh_pieces"] = m.mesh.pieces;
   j["size_field"] = plan.size_lattice ? nlohmann::json(plan.size_field_path) : nlohmann::json(nullptr);
   j["shock_points"] = plan.curve.size();
   j["shock_extension"] = {plan.extension_start / region.length_scale, plan.extension_end / region.length_scale};
@@ -517,6 +539,7 @@ void publish(scene::StagedDir& staged, const MeshResult& res, const CheckMeshRep
 
 MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std::string& out_dir) {
   const auto t_total = std::chrono::steady_clock::now();
+  const scene::CpuStopwatch cpu;
   scene::require_supersonic(s, "meshgen");
   const FluidRegion region = make_fluid_region(s);
   const std::string where = mesh_where(s);
@@ -527,7 +550,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   // interrupted run leaves the previous mesh in OUT as it was.
   scene::StagedDir staged(out_dir);
   const fs::path stage(staged.path());
-  GmshJob job = gmsh_job(s.mesh, stage);
+  GmshJob job = gmsh_job(s.mesh);
   const Meshed m = mesh_to_target(plan, region, job, stage, where, out_dir);
 
   MeshResult res;
@@ -539,7 +562,12 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   res.max_cell_size = sizes.max;
 
   stop_if_interrupted("after meshing", out_dir);
-  const FoamCase foam = export_to_foam(stage, region, out_dir);
+  Plots plots;
+  const FoamCase foam =
+      export_to_foam(stage, region, m.mesh, job.thickness, out_dir, [&](const ExtrudedLayer& layer) {
+        write_extruded_msh(m.mesh, layer, job.thickness, (stage / "mesh.msh").string());
+        plots = plot_grid(s, m, plan, region, res.kind, stage);
+      });
   res.max_non_orthogonality = foam.check.max_non_orthogonality;
   res.max_skewness = foam.check.max_skewness;
   res.check_mesh_ok = foam.check.ok;
@@ -547,8 +575,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
     throw scene::RunError("checkMesh counts " + std::to_string(foam.check.cells) + " cells, gmsh " +
                           std::to_string(res.cells));
 
-  const Plots plots = plot_grid(s, m, plan, region, res.kind, stage);
-  res.details = mesh_details(s, plan, region, job, m, sizes, foam, plots);
+  res.details = mesh_details(s, plan, region, job, m, sizes, foam, plots, cpu);
   stop_if_interrupted("after checkMesh", out_dir);
   res.details["seconds_total"] = seconds_since(t_total);
   publish(staged, res, foam.check, out_dir);

@@ -49,9 +49,16 @@ void write_mesh(const PlaneMesh& m, const std::string& path) {
   }
   put(os, static_cast<std::uint64_t>(m.cells.size()));
   for (const auto& c : m.cells) put(os, c);
+  put(os, static_cast<std::uint64_t>(m.boundary.size()));
+  for (const BoundaryEdge& e : m.boundary) {
+    put(os, e.a);
+    put(os, e.b);
+    put(os, static_cast<int>(e.patch));
+  }
   put(os, m.quads);
   put(os, m.triangles);
   put(os, m.volume_cells);
+  put(os, m.pieces);
   if (!os.flush()) throw scene::RunError(path + ": cannot write the gmsh result");
 }
 
@@ -71,7 +78,15 @@ PlaneMesh read_mesh(const std::string& path) {
     ok = get(is, c);
     m.cells.push_back(c);
   }
-  ok = ok && get(is, m.quads) && get(is, m.triangles) && get(is, m.volume_cells);
+  ok = ok && get(is, n);
+  for (std::uint64_t i = 0; ok && i < n; ++i) {
+    BoundaryEdge e;
+    int patch = 0;
+    ok = get(is, e.a) && get(is, e.b) && get(is, patch);
+    e.patch = static_cast<Patch>(patch);
+    m.boundary.push_back(e);
+  }
+  ok = ok && get(is, m.quads) && get(is, m.triangles) && get(is, m.volume_cells) && get(is, m.pieces);
   if (!ok) throw scene::RunError(path + ": truncated gmsh result from the meshing process");
   return m;
 }

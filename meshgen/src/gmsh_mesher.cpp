@@ -5,8 +5,10 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 
+#include "region_split.hpp"
 #include "scene/errors.hpp"
 
 namespace meshgen {
@@ -15,9 +17,8 @@ using scene::Vec2;
 
 namespace {
 
-// gmsh element types: 3-node triangle, 4-node quadrangle, 6-node prism,
-// 8-node hexahedron.
-constexpr int kTriangle = 2, kQuad = 3;
+// gmsh element types: 2-node line, 3-node triangle, 4-node quadrangle.
+constexpr int kLine = 1, kTriangle = 2, kQuad = 3;
 // Relative distance (body lengths) under which two boundary points are one.
 constexpr double kSamePoint = 1e-10;
 // Speed and cell quality decide (the budget is 10 s for 100k cells). CPU
@@ -51,7 +52,11 @@ void ensure_initialized() {
 void set_options(const GmshJob& job) {
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
-  gmsh::option::setNumber("General.NumThreads", 1);
+  // Threads mesh different surfaces at once (the pieces of a split region);
+  // the size callback is const and safe to call from them.
+  gmsh::option::setNumber("General.NumThreads", job.threads);
+  gmsh::option::setNumber("Mesh.MaxNumThreads1D", 1);
+  gmsh::option::setNumber("Mesh.MaxNumThreads2D", job.threads);
   gmsh::option::setNumber("Mesh.Algorithm", job.frontal ? kAlgorithmFrontal : kAlgorithmDelaunay);
   gmsh::option::setNumber("Mesh.RecombineAll", job.recombine ? 1 : 0);
   gmsh::option::setNumber("Mesh.RecombinationAlgorithm", kSimpleRecombination);
@@ -82,7 +87,13 @@ class PointTable {
   std::vector<std::pair<Vec2, int>> pts_;
 };
 
-PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<int>& volumes) {
+// The curves of the region's boundary loops, with their patches.
+struct TaggedCurve {
+  int tag = 0;
+  Patch patch = Patch::body;
+};
+
+PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<TaggedCurve>& curves) {
   PlaneMesh m;
   std::unordered_map<std::size_t, int> index;
   std::vector<std::size_t> tags;
@@ -111,10 +122,18 @@ PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<int>& v
       (per == 4 ? m.quads : m.triangles) += static_cast<long>(elems[t].size());
     }
   }
-  for (const int volume : volumes) {
-    gmsh::model::mesh::getElements(types, elems, nodes, 3, volume);
-    for (const auto& e : elems) m.volume_cells += static_cast<long>(e.size());
+  // The patch of every boundary edge comes from the curve gmsh meshed it on:
+  // exact for arcs and segments alike, with no geometric test.
+  for (const TaggedCurve& c : curves) {
+    gmsh::model::mesh::getElements(types, elems, nodes, 1, c.tag);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      if (types[t] != kLine)
+        throw scene::RunError("gmsh produced 1D elements of unexpected type " + std::to_string(types[t]));
+      for (std::size_t e = 0; e < elems[t].size(); ++e)
+        m.boundary.push_back({index.at(nodes[t][2 * e]), index.at(nodes[t][2 * e + 1]), c.patch});
+    }
   }
+  m.volume_cells = static_cast<long>(m.cells.size());
   return m;
 }
 
@@ -142,56 +161,32 @@ int add_strip(const ShockStrip& st, PointTable& points, std::vector<int>& surfac
   return loop;
 }
 
-PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
-              const std::vector<ShockStrip>& strips, const GmshJob& job) {
-  gmsh::clear();
-  gmsh::model::add("meshgen");
-  set_options(job);
-  PointTable points(kSamePoint * region.length_scale);
-  std::vector<int> loop_tags;
-  std::vector<Patch> curve_patch;  // in the order gmsh reports lateral surfaces
-  for (const auto& loop : region.loops) {
-    std::vector<int> curves;
-    for (const BoundaryCurve& c : loop) {
-      const int a = points.get(c.a), b = points.get(c.b);
-      if (c.is_arc) {
-        const int centre = gmsh::model::geo::addPoint(c.center.x, c.center.y, 0.0);
-        curves.push_back(gmsh::model::geo::addCircleArc(a, centre, b));
-      } else {
-        curves.push_back(gmsh::model::geo::addLine(a, b));
-      }
-      curve_patch.push_back(c.patch);
-    }
-    loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
-  }
-  // Strips are holes of the main surface and surfaces of their own; their
-  // lateral faces after extrusion are internal (no patch).
-  std::vector<int> strip_surfaces;
+// gmsh's own one-cell extrusion of the plane surfaces (the main surface
+// first, then the strips) with the patches as physical groups: the
+// gmshToFoam route, kept as the reference the direct writer is tested
+// against. Strip outlines become internal faces (no patch).
+void extrude_and_name(const std::vector<int>& plane, const std::vector<TaggedCurve>& boundary,
+                      const std::vector<ShockStrip>& strips, double thickness) {
+  gmsh::vectorpair bottoms;
+  for (const int s : plane) bottoms.emplace_back(2, s);
   std::size_t strip_curves = 0;
-  for (const ShockStrip& st : strips) {
-    loop_tags.push_back(add_strip(st, points, strip_surfaces));
-    strip_curves += st.outline().size();
-  }
-  const int surface = gmsh::model::geo::addPlaneSurface(loop_tags);
-  std::vector<std::pair<int, int>> bottoms{{2, surface}};
-  for (const int s : strip_surfaces) bottoms.emplace_back(2, s);
+  for (const ShockStrip& st : strips) strip_curves += st.outline().size();
   gmsh::vectorpair out;
-  gmsh::model::geo::extrude(bottoms, 0.0, 0.0, job.thickness, out, {1}, {}, true);
+  gmsh::model::geo::extrude(bottoms, 0.0, 0.0, thickness, out, {1}, {}, true);
   gmsh::model::geo::synchronize();
-  const std::size_t main_entities = 2 + curve_patch.size() + strip_curves;
-  if (out.size() != main_entities + 2 * strip_surfaces.size() + strip_curves)
-    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) +
-                          " entities, expected " +
-                          std::to_string(main_entities + 2 * strip_surfaces.size() + strip_curves));
-  std::vector<int> plane{surface}, tops{out[0].second}, volumes{out[1].second};
-  for (std::size_t k = 0, at = main_entities; k < strip_surfaces.size(); ++k) {
-    plane.push_back(strip_surfaces[k]);
+  const std::size_t main_entities = 2 + boundary.size() + strip_curves;
+  const std::size_t strip_surfaces = plane.size() - 1;
+  if (out.size() != main_entities + 2 * strip_surfaces + strip_curves)
+    throw scene::RunError("gmsh extrusion returned " + std::to_string(out.size()) + " entities, expected " +
+                          std::to_string(main_entities + 2 * strip_surfaces + strip_curves));
+  std::vector<int> tops{out[0].second}, volumes{out[1].second};
+  for (std::size_t k = 0, at = main_entities; k < strip_surfaces; ++k) {
     tops.push_back(out[at].second);
     volumes.push_back(out[at + 1].second);
     at += 2 + strips[k].outline().size();
   }
   std::map<Patch, std::vector<int>> by_patch;
-  for (std::size_t i = 0; i < curve_patch.size(); ++i) by_patch[curve_patch[i]].push_back(out[2 + i].second);
+  for (std::size_t i = 0; i < boundary.size(); ++i) by_patch[boundary[i].patch].push_back(out[2 + i].second);
   for (const auto& [patch, tags] : by_patch) {
     const int g = gmsh::model::addPhysicalGroup(2, tags);
     gmsh::model::setPhysicalName(2, g, patch_name(patch));
@@ -202,13 +197,87 @@ PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
   gmsh::model::setPhysicalName(2, fb, "frontAndBack");
   const int fluid = gmsh::model::addPhysicalGroup(3, volumes);
   gmsh::model::setPhysicalName(3, fluid, "fluid");
+}
+
+int add_curve(const BoundaryCurve& c, PointTable& points) {
+  const int a = points.get(c.a), b = points.get(c.b);
+  if (!c.is_arc) return gmsh::model::geo::addLine(a, b);
+  const int centre = gmsh::model::geo::addPoint(c.center.x, c.center.y, 0.0);
+  return gmsh::model::geo::addCircleArc(a, centre, b);
+}
+
+// The region as plane surfaces sharing the cuts (region_split.hpp), for
+// gmsh to mesh on several threads. Adds the boundary curves to `boundary`.
+std::vector<int> add_pieces(const RegionPieces& pieces, PointTable& points, std::vector<TaggedCurve>& boundary) {
+  std::vector<int> plane;
+  std::vector<std::pair<int, Vec2>> cuts(pieces.x.size());  // curve tag, start point
+  for (const auto& loops : pieces.loops) {
+    std::vector<int> loop_tags;
+    for (const auto& loop : loops) {
+      std::vector<int> curves;
+      for (const PieceCurve& pc : loop) {
+        if (pc.cut < 0) {
+          curves.push_back(add_curve(pc.curve, points));
+          boundary.push_back({curves.back(), pc.curve.patch});
+          continue;
+        }
+        auto& [tag, start] = cuts[static_cast<std::size_t>(pc.cut)];
+        if (tag == 0) {
+          tag = add_curve(pc.curve, points);
+          start = pc.curve.a;
+        }
+        curves.push_back(pc.curve.a == start ? tag : -tag);  // the other piece runs it backwards
+      }
+      loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
+    }
+    plane.push_back(gmsh::model::geo::addPlaneSurface(loop_tags));
+  }
+  return plane;
+}
+
+PlaneMesh run(const FluidRegion& region, const SizeFunction& size,
+              const std::vector<ShockStrip>& strips, const GmshJob& job) {
+  gmsh::clear();
+  gmsh::model::add("meshgen");
+  set_options(job);
+  PointTable points(kSamePoint * region.length_scale);
+  std::vector<TaggedCurve> boundary;  // in the order gmsh reports lateral surfaces
+  std::vector<int> plane;
+  // Split only where nothing else cuts the region (strips are holes the cut
+  // would cross) and gmsh's own extrusion is not asked for (it expects one
+  // main surface).
+  std::optional<RegionPieces> pieces;
+  if (job.pieces > 1 && strips.empty() && job.extruded_msh_path.empty())
+    pieces = split_region(region, size, job.pieces);
+  if (pieces) {
+    plane = add_pieces(*pieces, points, boundary);
+  } else {
+    std::vector<int> loop_tags;
+    for (const auto& loop : region.loops) {
+      std::vector<int> curves;
+      for (const BoundaryCurve& c : loop) {
+        curves.push_back(add_curve(c, points));
+        boundary.push_back({curves.back(), c.patch});
+      }
+      loop_tags.push_back(gmsh::model::geo::addCurveLoop(curves));
+    }
+    // Strips are holes of the main surface and surfaces of their own; their
+    // lateral faces after extrusion are internal (no patch).
+    std::vector<int> strip_surfaces;
+    for (const ShockStrip& st : strips) loop_tags.push_back(add_strip(st, points, strip_surfaces));
+    plane.push_back(gmsh::model::geo::addPlaneSurface(loop_tags));
+    plane.insert(plane.end(), strip_surfaces.begin(), strip_surfaces.end());
+  }
+  if (!job.extruded_msh_path.empty()) extrude_and_name(plane, boundary, strips, job.thickness);
+  gmsh::model::geo::synchronize();
 
   gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double) { return size({x, y}); });
-  gmsh::model::mesh::generate(3);
+  gmsh::model::mesh::generate(job.extruded_msh_path.empty() ? 2 : 3);
   gmsh::model::mesh::removeSizeCallback();
-  PlaneMesh m = read_plane(plane, volumes);
-  gmsh::write(job.msh_path);
+  PlaneMesh m = read_plane(plane, boundary);
+  if (!job.extruded_msh_path.empty()) gmsh::write(job.extruded_msh_path);
   gmsh::clear();
+  m.pieces = static_cast<int>(pieces ? pieces->loops.size() : 1);
   return m;
 }
 

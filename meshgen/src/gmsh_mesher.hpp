@@ -11,26 +11,45 @@
 
 namespace meshgen {
 
+// A mesh edge on the region's boundary (two node indices) and its patch.
+struct BoundaryEdge {
+  int a = 0, b = 0;
+  Patch patch = Patch::body;
+};
+
 // The 2D cells of the base plane z = 0 (the extruded grid has one cell per
-// 2D cell): quads, and triangles with node[3] = -1.
+// 2D cell): quads, and triangles with node[3] = -1, in gmsh's orientation
+// (either sense); and the mesh edges on the region's boundary curves, each
+// with the patch of its curve (edges on the strips' outlines are internal
+// and not listed).
 struct PlaneMesh {
   std::vector<scene::Vec2> nodes;
   std::vector<std::array<int, 4>> cells;
+  std::vector<BoundaryEdge> boundary;
   long quads = 0, triangles = 0;
-  long volume_cells = 0;  // hexahedra + prisms after extrusion
+  long volume_cells = 0;  // hexahedra + prisms of the one-cell layer (= cells)
+  int pieces = 1;         // surfaces the region was meshed as (region_split.hpp)
 };
 
 struct GmshJob {
   bool recombine = true;
   bool frontal = false;   // Frontal-Delaunay instead of Delaunay
   int smoothing = 0;      // Laplacian smoothing passes
+  // pieces > 1: the region is cut into up to this many pieces where it can
+  // be (region_split.hpp), which gmsh meshes on `threads` threads.
+  int pieces = 1;
+  int threads = 1;
   double thickness = 0.05;  // z-extent of the one-cell layer
-  std::string msh_path;     // written in gmsh 2.2 ASCII (what gmshToFoam reads)
+  // When set, gmsh itself also extrudes the mesh one cell thick, names the
+  // patches (physical surfaces inlet, outlet, top, bottom, body,
+  // frontAndBack; volume "fluid") and writes it here in gmsh 2.2 ASCII: the
+  // gmshToFoam route the direct polyMesh writer is tested against. meshgen
+  // itself leaves it empty (poly_mesh.hpp, msh_writer.hpp write its outputs).
+  std::string extruded_msh_path;
 };
 
-// Meshes the region with `size` as gmsh's size callback, extrudes it one
-// cell thick, names the patches (physical surfaces inlet, outlet, top,
-// bottom, body, frontAndBack; volume "fluid") and writes the .msh file.
+// Meshes the region in 2D with `size` as gmsh's size callback (and extrudes
+// and writes the extruded .msh when job.extruded_msh_path is set).
 // RunError when gmsh fails.
 PlaneMesh mesh_with_gmsh(const FluidRegion& region, const SizeField& size, const GmshJob& job);
 

@@ -104,8 +104,8 @@ std::string GridRunner::mesh_dir(const std::string& family, double level) const 
   return cache_.dir("meshgen/" + level_name(family, level));
 }
 
-// Meshed and cached; meshgen's summary gains the stage's CPU seconds (gmsh
-// in-process, gmshToFoam and checkMesh as children).
+// Meshed and cached; meshgen's summary gains the stage's CPU seconds (meshgen
+// in-process, gmsh, checkMesh and gnuplot as children).
 nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock) {
   const bool clustered = is_clustered(family);
   const std::string stage = "meshgen/" + level_name(family, level);

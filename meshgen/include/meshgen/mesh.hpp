@@ -37,7 +37,7 @@ struct MeshResult {
   double min_cell_size = 0, max_cell_size = 0;  // mean edge length of a cell, scene coordinates
   double max_non_orthogonality = 0, max_skewness = 0;  // checkMesh, degrees / -
   bool check_mesh_ok = false;
-  double seconds = 0;  // gmsh: geometry, meshing, extrusion, statistics, .msh
+  double seconds = 0;  // gmsh: geometry, 2D meshing (all attempts' last), reading the plane mesh back
   nlohmann::json details;  // every other figure written to summary.json
   nlohmann::json summary() const;
 };
@@ -48,8 +48,8 @@ struct MeshResult {
 // Returns the estimated cell count.
 double check_mesh_request(const scene::Scene& s, const MeshRequest& r);
 
-// Writes OUT/mesh.msh, OUT/constant/polyMesh/, OUT/system/controlDict,
-// OUT/log.gmshToFoam, OUT/log.checkMesh, OUT/summary.json and OUT/mesh.png,
+// Writes OUT/mesh.msh, OUT/constant/polyMesh/ (written directly, no
+// gmshToFoam), OUT/system/controlDict, OUT/log.checkMesh, OUT/summary.json and OUT/mesh.png,
 // OUT/mesh_zoom.png (plots are best effort). InputError on a bad request
 // (clustered without a shock curve, a shock wholly outside the flow),
 // RunError when gmsh or OpenFOAM fail or a target count cannot be met.

@@ -26,7 +26,7 @@ struct GridRun {
   double pressure_error = 0; // relative, wedges only (NaN otherwise)
   double speedup_cfd = 0;    // clustered: uniform time at this run's error / this run's time
   // Costs in CPU seconds (user + system, children included): the meshing
-  // stage (gmsh, gmshToFoam, checkMesh) and the solver (all ranks).
+  // stage (gmsh, the grid files, checkMesh) and the solver (all ranks).
   double mesh_cpu_seconds = scene::kNaN;
   double cfd_cpu_seconds = scene::kNaN;
   double flow_throughs = scene::kNaN;

@@ -32,7 +32,7 @@ struct VerdictRun {
   long cells = 0;
   long steps = 0;         // solver time steps to steady state
   double cfd_cpu = 0;     // solver CPU seconds (all ranks)
-  double mesh_cpu = 0;    // gmsh + gmshToFoam + checkMesh CPU seconds
+  double mesh_cpu = 0;    // meshgen's CPU seconds: gmsh, grid files, checkMesh
   double error = 0;       // primary error
   double error_ci = 0;    // its 95% half-width
   bool steady = false;

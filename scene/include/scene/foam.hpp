@@ -2,7 +2,7 @@
 // Running OpenFOAM applications: each in the OpenFOAM environment (its
 // etc/bashrc sourced by bash), in the case directory, writing
 // CASE/log.<application> there, as OpenFOAM's RunFunctions do, so that a
-// user can rerun a step by hand. Used by meshgen (gmshToFoam, checkMesh) and
+// user can rerun a step by hand. Used by meshgen (checkMesh; gmshToFoam in its tests) and
 // cfd_cases (blockMesh, decomposePar, rhoCentralFoam, reconstructPar).
 #include <string>
 #include <vector>

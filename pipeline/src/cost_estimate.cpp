@@ -33,8 +33,9 @@ constexpr double kFlowThroughsBlunt = 8.0;
 constexpr double kCpuPerStep = 3.4e-4;
 constexpr double kCpuPerCellStep = 1.5e-6;
 constexpr double kCpuPerCase = 1.5;
-// Mesh: gmsh and the OpenFOAM conversion cost about this per cell.
-constexpr double kMeshCpuPerCell = 2e-5;
+// Mesh: meshgen's whole chain (gmsh in pieces, the polyMesh, checkMesh, the
+// plots) measured at 9.2 CPU s for 108k cells (docs/meshgen.md).
+constexpr double kMeshCpuPerCell = 8.5e-5;
 constexpr double kMeshCpuPerGrid = 1.0;
 // A clustered grid grades from h_min to h_max at ratio `growth`: per unit
 // shock length and side, the graded layers hold sum 1/h_k ~ 1/(h_min (1 - 1/growth)) cells.

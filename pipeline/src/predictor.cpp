@@ -44,6 +44,27 @@ void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& 
   scene::write_shock_csv(path, rows);
 }
 
+ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg, double angle_ci_deg) {
+  constexpr int kPoints = 40;
+  const double a = angle_deg * scene::kDeg;
+  const scene::Vec2 dir{std::cos(a), std::sin(a)};
+  // Distance to the first domain edge the ray meets.
+  double len = 1e300;
+  if (dir.x > 0) len = std::min(len, (d.xmax - apex.x) / dir.x);
+  if (dir.x < 0) len = std::min(len, (d.xmin - apex.x) / dir.x);
+  if (dir.y > 0) len = std::min(len, (d.ymax - apex.y) / dir.y);
+  if (dir.y < 0) len = std::min(len, (d.ymin - apex.y) / dir.y);
+  ShockCurve c;
+  if (!(len > 0.0 && len < 1e300)) return c;
+  const double spread = std::isfinite(angle_ci_deg) ? std::tan(angle_ci_deg * scene::kDeg) : 0.0;
+  for (int k = 0; k <= kPoints; ++k) {
+    const double s = len * k / kPoints;
+    c.points.push_back(apex + s * dir);
+    c.half_width.push_back(s * spread);
+  }
+  return c;
+}
+
 std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
   std::vector<ShockPoint> out;
   for (const auto& r : scene::read_shock_csv(path).rows)

@@ -28,21 +28,7 @@ constexpr int kCurvePoints = 40;
 constexpr double kBilligCylinderRel = 0.10;
 constexpr double kBilligApproximateRel = 0.30;
 
-struct Curve {
-  std::vector<scene::Vec2> points;
-  std::vector<double> half_width;
-};
-
-Curve oblique_line(const scene::Domain& d, double beta) {
-  Curve c;
-  const double x_end = std::min(d.xmax, d.ymax / std::tan(beta));
-  for (int k = 0; k <= kCurvePoints; ++k) {
-    const double x = x_end * k / kCurvePoints;
-    c.points.push_back({x, x * std::tan(beta)});
-    c.half_width.push_back(0.0);  // exact: meshgen's smallest band applies
-  }
-  return c;
-}
+using Curve = ShockCurve;
 
 // Billig's hyperbola from its vertex (x0, yc), upper branch (and the lower
 // one when the domain is not symmetric), clipped to the domain.
@@ -75,7 +61,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     p.kind = scene::ShockKind::attached;
     p.shock_angle_deg = *beta / kDeg;
     p.shock_angle_ci_deg = 0.0;
-    curve = oblique_line(d, *beta);
+    curve = apex_ray(d, scene::make_body(*s.body).nose, p.shock_angle_deg, 0.0);
     p.details = {{"correlation", "theta-beta-Mach relation (exact for the inviscid gas)"}};
   } else {
     const double radius = scene::correlation_nose_radius(*s.body);

@@ -1,11 +1,22 @@
 // The granular gas streamed past the body, its shock located by shockfit's
 // two-line fits: the project's predictor.
+//
+// An attached shock is handed to meshgen as the ray from the apex at the
+// fitted angle, not as the fitted stations: the granular shock is thick and
+// stands off the apex (its gas is rarefied at the leading edge), so the
+// stations lie upstream of the gas shock by 0.02-0.07 body lengths on the
+// wedge case studies (4-14 of their finest h_min) while their fitted angle,
+// the quantity the restitution is calibrated on, is within a degree. The
+// inviscid shock starts at the apex; a band round the stations missed it,
+// and the clustered grids' error stalled where the shock ran through graded
+// cells (docs/meshgen.md, "The band on an attached shock").
 #include "pipeline/predictors.hpp"
 
 #include <cmath>
 
 #include "json_fields.hpp"
 #include "pipeline/run.hpp"
+#include "scene/body.hpp"
 
 namespace pipeline {
 
@@ -42,11 +53,19 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.wall_seconds = number_or_nan(r, "granular_wall_seconds");
   p.fingerprint = r.value("fingerprint", "");
   p.shock_csv = cx.out_dir + "/shockfit/shock.csv";
-  if (p.kind != scene::ShockKind::none)
+  if (p.kind == scene::ShockKind::attached && std::isfinite(p.shock_angle_deg)) {
+    const ShockCurve ray = apex_ray(scene::scene_domain(cx.scene), scene::make_body(*cx.scene.body).nose,
+                                    p.shock_angle_deg, p.shock_angle_ci_deg);
+    p.curve = ray.points;
+    p.half_width = ray.half_width;
+    p.shock_csv = cx.out_dir + "/shock_ray.csv";
+    write_shock_curve(p.shock_csv, p.curve, p.half_width);
+  } else if (p.kind != scene::ShockKind::none) {
     for (const auto& q : read_accepted_shock(p.shock_csv)) {
       p.curve.push_back(q.point);
       p.half_width.push_back(q.half_width);
     }
+  }
   p.details = {{"restitution", cx.scene.granular.restitution},
                {"granular", r.value("granular", nlohmann::json::object())},
                {"field", r.value("field", "")},

@@ -71,6 +71,17 @@ std::unique_ptr<Predictor> make_predictor(const std::string& name);
 void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& curve,
                        const std::vector<double>& half_width);
 
+// An attached shock as meshgen should see it: the ray from the body's nose
+// (the apex, where the inviscid shock starts) at `angle_deg` to where it
+// leaves the domain, kPoints + 1 points, each with the 95% half-width the
+// angle's interval gives at its distance from the apex,
+// s tan(angle_ci_deg) (0 for an exact angle: meshgen's smallest band).
+struct ShockCurve {
+  std::vector<scene::Vec2> points;
+  std::vector<double> half_width;
+};
+ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg, double angle_ci_deg);
+
 struct ShockPoint {
   scene::Vec2 point;
   double half_width = 0;

@@ -102,3 +102,37 @@ TEST(Predictor, PredictCommandWritesTheContractKeys) {
   EXPECT_TRUE(fs::exists(out / "shock.csv"));
 }
 
+
+TEST(Predictor, ApexRayStartsAtTheApexAndWidensWithTheAngleInterval) {
+  const scene::Domain d{-0.2, 1.0, 0.0, 0.8, true};
+  constexpr double kAngle = 30.0, kCi = 0.5;
+  const auto ray = pipeline::apex_ray(d, {0.0, 0.0}, kAngle, kCi);
+  ASSERT_GE(ray.points.size(), 2u);
+  ASSERT_EQ(ray.half_width.size(), ray.points.size());
+  EXPECT_EQ(ray.points.front().x, 0.0);
+  EXPECT_EQ(ray.half_width.front(), 0.0);
+  for (std::size_t i = 0; i < ray.points.size(); ++i) {
+    const auto q = ray.points[i];
+    EXPECT_NEAR(q.y, q.x * std::tan(kAngle * kDeg), 1e-12);
+    EXPECT_NEAR(ray.half_width[i], scene::norm(q) * std::tan(kCi * kDeg), 1e-12);
+  }
+  // It ends where it leaves the domain: the outlet at x = 1 (y = 0.577 < 0.8).
+  EXPECT_NEAR(ray.points.back().x, 1.0, 1e-12);
+}
+
+// The granular predictor's attached shock as meshgen gets it: the ray from
+// the apex at the fitted angle (the stations stand off upstream), the
+// stations themselves kept in shockfit/shock.csv.
+TEST(Predictor, GranularHandsAnAttachedShockAsTheApexRay) {
+  const auto s = scene::load_scene(kData + "/wedge_verdict.yaml");
+  const auto dir = fresh("granular_ray");
+  const auto p = pipeline::predict_shock(s, "granular", dir.string(), 1);
+  ASSERT_EQ(p.kind, scene::ShockKind::attached);
+  ASSERT_GE(p.curve.size(), 2u);
+  EXPECT_LT(scene::norm(p.curve.front()), 1e-12) << "the ray starts at the apex";
+  for (std::size_t i = 1; i < p.curve.size(); ++i)
+    EXPECT_NEAR(std::atan2(p.curve[i].y, p.curve[i].x) / kDeg, p.shock_angle_deg, 1e-9) << i;
+  const auto req = meshgen::request_from_shock_csv(p.shock_csv);
+  EXPECT_EQ(req.shock_curve.size(), p.curve.size());
+  EXPECT_TRUE(fs::exists(dir / "shockfit" / "shock.csv")) << "the measured stations stay";
+}

@@ -176,8 +176,13 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
   const std::string dir = in.out_dir;
   const auto& c = in.comparison;
   const bool angle = in.reference.quantity == "shock_angle_deg";
-  const auto& granular_pts = in.prediction.curve;
+  const auto& granular_pts = in.prediction.curve;  // the curve meshgen was given
   const std::string predicted = "predicted (" + in.prediction.predictor + ")";
+  // The granular stations as shockfit fitted them (an attached shock is
+  // meshed round the apex ray at their angle instead).
+  const bool granular = in.prediction.predictor == "granular";
+  const std::vector<scene::Vec2> stations =
+      granular ? accepted_points(dir + "/shockfit/shock.csv", w) : std::vector<scene::Vec2>{};
   std::vector<scene::Vec2> cfd_pts;
   std::string cfd_name;
   if (c.clustered_pick >= 0) {
@@ -194,13 +199,13 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
     }
   }
   const std::string gvti = dir + "/granular/fields.vti";
-  if (in.prediction.predictor == "granular" && fs::exists(gvti)) {
+  if (granular && fs::exists(gvti)) {
     try {
       const auto lat = scene::read_vti(gvti);
       field_png(lat, "volume_fraction", "Granular volume fraction with the fitted shock",
-                {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}},
+                {{"granular shock", stations, "points pt 7 ps 0.8 lc rgb 'white'"}},
                 fig + "/granular_volume_fraction.png");
-      field_png(lat, "u", "Granular velocity u", {{"granular shock", granular_pts, "points pt 7 ps 0.8 lc rgb 'white'"}},
+      field_png(lat, "u", "Granular velocity u", {{"granular shock", stations, "points pt 7 ps 0.8 lc rgb 'white'"}},
                 fig + "/granular_velocity.png");
     } catch (const std::exception& e) {
       w.add("granular figures skipped", e);
@@ -211,6 +216,7 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
       const auto lat = scene::read_vti(dir + "/cfd/" + cfd_name + "/fields.vti");
       field_png(lat, "mach", "Shocks over the clustered CFD Mach field: predicted, CFD and exact",
                 {{predicted, granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
+                 {"granular stations", stations, "points pt 6 ps 0.8 lc rgb 'gray'"},
                  {"CFD (clustered)", cfd_pts, "points pt 4 ps 0.8 lc rgb 'black'"},
                  {"exact", exact, "lines lw 2 dt 2 lc rgb 'magenta'"}},
                 fig + "/shocks_compared.png");

@@ -22,7 +22,7 @@ constexpr int kExitBisections = 50;
 constexpr double kMaxExtrapolation = 1.0;
 
 struct Stretch {
-  Vec2 direction;  // unit, pointing out of the curve's end
+  Vec2 direction;       // unit, pointing out of the curve's end
   std::size_t far = 0;  // index of the stretch's other end
   double length = 0.0;
   double curvature = 0.0;  // |turn| between the stretch's two halves over half its length
@@ -30,7 +30,8 @@ struct Stretch {
 
 // Least-squares direction (principal axis) of points [lo, hi], oriented from
 // `from` towards `to`.
-Vec2 principal_direction(const std::vector<Vec2>& pts, std::size_t lo, std::size_t hi, Vec2 from, Vec2 to) {
+Vec2 principal_direction(const std::vector<Vec2>& pts, std::size_t lo, std::size_t hi, Vec2 from,
+                         Vec2 to) {
   Vec2 mean{0, 0};
   for (std::size_t i = lo; i <= hi; ++i) mean += pts[i];
   mean = mean / static_cast<double>(hi - lo + 1);
@@ -99,8 +100,8 @@ double exit_distance(const FluidRegion& region, Vec2 p, Vec2 dir) {
 
 }  // namespace
 
-ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve, const std::vector<double>& ci,
-                                       const FluidRegion& region) {
+ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve,
+                                       const std::vector<double>& ci, const FluidRegion& region) {
   ExtendedShock out{curve, ci, 0.0, 0.0};
   std::vector<Vec2> pts;
   for (const Vec2 p : curve)
@@ -117,7 +118,8 @@ ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve, const std
     const Vec2 tip = at_end ? pts.back() : pts.front();
     if (!region.contains(tip)) continue;
     const Stretch s = end_stretch(pts, at_end);
-    const double length = std::min(exit_distance(region, tip, s.direction), kMaxExtrapolation * s.length);
+    const double length =
+        std::min(exit_distance(region, tip, s.direction), kMaxExtrapolation * s.length);
     if (!(length > 0.0)) continue;
     const Vec2 exit = tip + length * s.direction;
     // The straight line's own 95% spread, plus where the curve would have

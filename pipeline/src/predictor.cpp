@@ -9,7 +9,9 @@
 namespace pipeline {
 
 nlohmann::json Prediction::summary() const {
-  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  auto num = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
   nlohmann::json j;
   j["predictor"] = predictor;
   j["shock"] = scene::to_string(kind);
@@ -22,7 +24,8 @@ nlohmann::json Prediction::summary() const {
   j["shock_points"] = static_cast<long>(curve.size());
   j["shock_csv"] = shock_csv;
   j["size_fields"] = nlohmann::json::array();
-  for (const auto& [level, path] : size_fields) j["size_fields"].push_back({{"level", level}, {"path", path}});
+  for (const auto& [level, path] : size_fields)
+    j["size_fields"].push_back({{"level", level}, {"path", path}});
   j["details"] = details;
   return j;
 }
@@ -44,7 +47,8 @@ void write_shock_curve(const std::string& path, const std::vector<scene::Vec2>& 
   scene::write_shock_csv(path, rows);
 }
 
-ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg, double angle_ci_deg) {
+ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
+                    double angle_ci_deg) {
   constexpr int kPoints = 40;
   const double a = angle_deg * scene::kDeg;
   const scene::Vec2 dir{std::cos(a), std::sin(a)};
@@ -79,7 +83,9 @@ std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
 
 namespace pipeline {
 
-std::vector<std::string> predictor_names() { return {"granular", "correlation", "coarse_cfd", "adapt"}; }
+std::vector<std::string> predictor_names() {
+  return {"granular", "correlation", "coarse_cfd", "adapt"};
+}
 
 std::unique_ptr<Predictor> make_predictor(const std::string& name) {
   if (name == "granular") return std::make_unique<GranularPredictor>();

@@ -10,11 +10,10 @@
 // inviscid shock starts at the apex; a band round the stations missed it,
 // and the clustered grids' error stalled where the shock ran through graded
 // cells (docs/meshgen.md, "The band on an attached shock").
-#include "pipeline/predictors.hpp"
-
 #include <cmath>
 
 #include "json_fields.hpp"
+#include "pipeline/predictors.hpp"
 #include "pipeline/run.hpp"
 #include "scene/body.hpp"
 
@@ -54,8 +53,9 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.fingerprint = r.value("fingerprint", "");
   p.shock_csv = cx.out_dir + "/shockfit/shock.csv";
   if (p.kind == scene::ShockKind::attached && std::isfinite(p.shock_angle_deg)) {
-    const ShockCurve ray = apex_ray(scene::scene_domain(cx.scene), scene::make_body(*cx.scene.body).nose,
-                                    p.shock_angle_deg, p.shock_angle_ci_deg);
+    const ShockCurve ray =
+        apex_ray(scene::scene_domain(cx.scene), scene::make_body(*cx.scene.body).nose,
+                 p.shock_angle_deg, p.shock_angle_ci_deg);
     p.curve = ray.points;
     p.half_width = ray.half_width;
     p.shock_csv = cx.out_dir + "/shock_ray.csv";

@@ -12,9 +12,9 @@ using scene::Vec2;
 
 namespace {
 
-constexpr double kOnLine = 1e-9;      // an exact straight shock stays on its line
-constexpr double kOnEdge = 1e-6;      // an exit point lies on the region's edge (bisection)
-constexpr double kNearApex = 2e-3;    // the exact attached shock starts at the apex
+constexpr double kOnLine = 1e-9;    // an exact straight shock stays on its line
+constexpr double kOnEdge = 1e-6;    // an exit point lies on the region's edge (bisection)
+constexpr double kNearApex = 2e-3;  // the exact attached shock starts at the apex
 
 // The exact shock of a wedge case, kept only between x0 and x1 as the
 // predictor's accepted stations would be.
@@ -29,8 +29,8 @@ std::vector<Vec2> truncated_wedge_shock(const scene::Scene& s, double x0, double
 }
 
 bool on_domain_edge(const scene::Domain& d, Vec2 p) {
-  return std::abs(p.x - d.xmax) < kOnEdge || std::abs(p.y - d.ymax) < kOnEdge || std::abs(p.x - d.xmin) < kOnEdge ||
-         std::abs(p.y - d.ymin) < kOnEdge;
+  return std::abs(p.x - d.xmax) < kOnEdge || std::abs(p.y - d.ymax) < kOnEdge ||
+         std::abs(p.x - d.xmin) < kOnEdge || std::abs(p.y - d.ymin) < kOnEdge;
 }
 
 }  // namespace
@@ -87,7 +87,8 @@ TEST(ShockExtension, ACurvedEndWidensWithItsCurvature) {
   }
   const meshgen::ExtendedShock e = meshgen::extend_shock_to_boundary(arc, {}, r);
   ASSERT_EQ(e.ci.size(), 0u);
-  const meshgen::ExtendedShock w = meshgen::extend_shock_to_boundary(arc, std::vector<double>(arc.size(), 0.0), r);
+  const meshgen::ExtendedShock w =
+      meshgen::extend_shock_to_boundary(arc, std::vector<double>(arc.size(), 0.0), r);
   ASSERT_EQ(w.ci.size(), w.curve.size());
   const double s_end = w.end_length;
   ASSERT_GT(s_end, 0.1);
@@ -108,7 +109,8 @@ TEST(ShockExtension, ABowShockLeavesTheRegionAtBothEnds) {
   ASSERT_EQ(e.curve.size(), middle.size() + 2);
   EXPECT_TRUE(on_domain_edge(r.domain, e.curve.front()));
   EXPECT_TRUE(on_domain_edge(r.domain, e.curve.back()));
-  for (const Vec2 p : e.curve) EXPECT_TRUE(p.x >= r.domain.xmin - kOnEdge && p.x <= r.domain.xmax + kOnEdge);
+  for (const Vec2 p : e.curve)
+    EXPECT_TRUE(p.x >= r.domain.xmin - kOnEdge && p.x <= r.domain.xmax + kOnEdge);
 }
 
 TEST(ShockExtension, PointsAndEndsOutsideTheRegionAreLeftAlone) {

@@ -44,7 +44,7 @@ struct ExtendedShock {
 // ci: one 95% half-width per point, or empty. Curves of fewer than two
 // distinct points, and ends that already lie outside the region, are kept
 // as they are.
-ExtendedShock extend_shock_to_boundary(const std::vector<scene::Vec2>& curve, const std::vector<double>& ci,
-                                       const FluidRegion& region);
+ExtendedShock extend_shock_to_boundary(const std::vector<scene::Vec2>& curve,
+                                       const std::vector<double>& ci, const FluidRegion& region);
 
 }  // namespace meshgen

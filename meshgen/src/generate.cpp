@@ -350,7 +350,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
     // attempt at a target cell count costs.
     m.gmsh_cpu += scene::children_cpu_seconds() - cpu_before;
     if (!plan.target) break;
-    const double n = static_cast<double>(m.mesh.volume_cells);
+    const double n = static_cast<double>(m.mesh.cells.size());
     const double miss = std::abs(n / *plan.target - 1.0);
     if (miss <= kTargetRetry) break;
     if (m.attempts >= kMaxTargetAttempts) {
@@ -358,7 +358,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
       throw scene::RunError(where + "target_cells " +
                             std::to_string(static_cast<long>(*plan.target)) +
                             " not met within 10% after " + std::to_string(m.attempts) +
-                            " meshes (last " + std::to_string(m.mesh.volume_cells) + ")");
+                            " meshes (last " + std::to_string(m.mesh.cells.size()) + ")");
     }
     calibration = n / m.estimate;
   }
@@ -555,7 +555,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
 
   MeshResult res;
   res.kind = plan.uniform ? "uniform" : plan.size_lattice ? "adapted" : "clustered";
-  res.cells = m.mesh.volume_cells;
+  res.cells = static_cast<long>(m.mesh.cells.size());
   res.seconds = m.gmsh_seconds;
   const CellSizes sizes = measure_cell_sizes(m.mesh, m.sizing, plan.base.growth);
   res.min_cell_size = sizes.min;

@@ -57,7 +57,6 @@ void write_mesh(const PlaneMesh& m, const std::string& path) {
   }
   put(os, m.quads);
   put(os, m.triangles);
-  put(os, m.volume_cells);
   put(os, m.pieces);
   if (!os.flush()) throw scene::RunError(path + ": cannot write the gmsh result");
 }
@@ -86,7 +85,7 @@ PlaneMesh read_mesh(const std::string& path) {
     e.patch = static_cast<Patch>(patch);
     m.boundary.push_back(e);
   }
-  ok = ok && get(is, m.quads) && get(is, m.triangles) && get(is, m.volume_cells) && get(is, m.pieces);
+  ok = ok && get(is, m.quads) && get(is, m.triangles) && get(is, m.pieces);
   if (!ok) throw scene::RunError(path + ": truncated gmsh result from the meshing process");
   return m;
 }

@@ -133,7 +133,6 @@ PlaneMesh read_plane(const std::vector<int>& surfaces, const std::vector<TaggedC
         m.boundary.push_back({index.at(nodes[t][2 * e]), index.at(nodes[t][2 * e + 1]), c.patch});
     }
   }
-  m.volume_cells = static_cast<long>(m.cells.size());
   return m;
 }
 

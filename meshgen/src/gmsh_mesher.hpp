@@ -27,7 +27,6 @@ struct PlaneMesh {
   std::vector<std::array<int, 4>> cells;
   std::vector<BoundaryEdge> boundary;
   long quads = 0, triangles = 0;
-  long volume_cells = 0;  // hexahedra + prisms of the one-cell layer (= cells)
   int pieces = 1;         // surfaces the region was meshed as (region_split.hpp)
 };
 

@@ -103,19 +103,23 @@ double exit_distance(const FluidRegion& region, Vec2 p, Vec2 dir) {
 ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve,
                                        const std::vector<double>& ci, const FluidRegion& region) {
   ExtendedShock out{curve, ci, 0.0, 0.0};
+  // The distinct points in order, each with the index of its last copy in
+  // `curve` (copies share a position, and the last copy's ci stands).
   std::vector<Vec2> pts;
-  for (const Vec2 p : curve)
-    if (pts.empty() || !(pts.back() == p)) pts.push_back(p);
+  std::vector<std::size_t> last;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    if (pts.empty() || !(pts.back() == curve[i])) {
+      pts.push_back(curve[i]);
+      last.push_back(i);
+    }
+    last.back() = i;
+  }
   if (pts.size() < 2) return out;
   const bool has_ci = !ci.empty() && ci.size() == curve.size();
-  // ci of a distinct point: that of its last copy in `curve` (copies share a position).
-  const auto ci_of = [&](Vec2 p) {
-    for (std::size_t i = curve.size(); i-- > 0;)
-      if (curve[i] == p) return std::isfinite(ci[i]) ? ci[i] : 0.0;
-    return 0.0;
-  };
+  const auto ci_of = [&](std::size_t k) { return std::isfinite(ci[last[k]]) ? ci[last[k]] : 0.0; };
   for (const bool at_end : {false, true}) {
-    const Vec2 tip = at_end ? pts.back() : pts.front();
+    const std::size_t tip_index = at_end ? pts.size() - 1 : 0;
+    const Vec2 tip = pts[tip_index];
     if (!region.contains(tip)) continue;
     const Stretch s = end_stretch(pts, at_end);
     const double length =
@@ -126,8 +130,8 @@ ExtendedShock extend_shock_to_boundary(const std::vector<Vec2>& curve,
     // gone had it kept bending as over its end stretch.
     double w_exit = 0.5 * s.curvature * length * (length + s.length);
     if (has_ci) {
-      const double spread = (ci_of(tip) + ci_of(pts[s.far])) / s.length;
-      w_exit += ci_of(tip) + length * spread;
+      const double spread = (ci_of(tip_index) + ci_of(s.far)) / s.length;
+      w_exit += ci_of(tip_index) + length * spread;
     }
     if (at_end) {
       out.curve.push_back(exit);

@@ -28,12 +28,10 @@ constexpr int kCurvePoints = 40;
 constexpr double kBilligCylinderRel = 0.10;
 constexpr double kBilligApproximateRel = 0.30;
 
-using Curve = ShockCurve;
-
 // Billig's hyperbola from its vertex (x0, yc), upper branch (and the lower
 // one when the domain is not symmetric), clipped to the domain.
-Curve billig_shape(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex, double half_width) {
-  Curve c;
+ShockCurve billig_shape(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex, double half_width) {
+  ShockCurve c;
   const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
   auto add = [&](double dy) {
     const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
@@ -56,7 +54,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   const double mach = s.freestream.mach;
   Prediction p;
   p.predictor = name();
-  Curve curve;
+  ShockCurve curve;
   if (const auto beta = scene::attached_shock_beta(s)) {
     p.kind = scene::ShockKind::attached;
     p.shock_angle_deg = *beta / kDeg;

@@ -216,7 +216,10 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
       const auto lat = scene::read_vti(dir + "/cfd/" + cfd_name + "/fields.vti");
       field_png(lat, "mach", "Shocks over the clustered CFD Mach field: predicted, CFD and exact",
                 {{predicted, granular_pts, "points pt 7 ps 1.0 lc rgb 'white'"},
-                 {"granular stations", stations, "points pt 6 ps 0.8 lc rgb 'gray'"},
+                 // Beside the ray they stand off; otherwise they are the curve above.
+                 {"granular stations", in.prediction.kind == scene::ShockKind::attached ? stations
+                                                                                       : std::vector<scene::Vec2>{},
+                  "points pt 6 ps 0.8 lc rgb 'gray'"},
                  {"CFD (clustered)", cfd_pts, "points pt 4 ps 0.8 lc rgb 'black'"},
                  {"exact", exact, "lines lw 2 dt 2 lc rgb 'magenta'"}},
                 fig + "/shocks_compared.png");

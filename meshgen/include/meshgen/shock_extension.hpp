@@ -24,9 +24,9 @@
 // shock would be had it kept turning as it turns over the stretch (kappa:
 // the turn between the stretch's halves over half its length; the fitted
 // direction is the stretch's mean, half a stretch's turn behind the tip's
-// tangent, hence s + L_stretch rather than s). Without
-// stated intervals only the curvature term is kept (the band's default
-// width is the floor either way).
+// tangent, hence s + L_stretch rather than s). A curve without stated
+// intervals is extended all the same and keeps none: its band is meshgen's
+// default width throughout.
 #include <vector>
 
 #include "meshgen/fluid_region.hpp"

@@ -74,7 +74,8 @@ CalibrationTable read_calibration(const std::string& path) {
   YAML::Node root;
   try {
     // A malformed table must be an input error, never a parser hang.
-    if (std::filesystem::is_regular_file(path)) scene::check_yaml_text(scene::read_file(path), path);
+    if (std::filesystem::is_regular_file(path))
+      scene::check_yaml_text(scene::read_file(path), path);
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
     throw scene::InputError(path + ": calibration table not found");
@@ -85,7 +86,8 @@ CalibrationTable read_calibration(const std::string& path) {
   try {
     if (root["gamma"]) t.gamma = root["gamma"].as<double>();
     t.cpu_seconds = optional_number(root, "cpu_seconds", kNaN);
-    if (std::isfinite(t.cpu_seconds) && t.cpu_seconds < 0) bad(path, root["cpu_seconds"], "cpu_seconds", "negative");
+    if (std::isfinite(t.cpu_seconds) && t.cpu_seconds < 0)
+      bad(path, root["cpu_seconds"], "cpu_seconds", "negative");
     for (const auto& n : root["entries"]) {
       CalibrationEntry e;
       e.mach = n["mach"].as<double>();
@@ -180,6 +182,18 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");
+}
+
+double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
+  double ss = 0;
+  int n = 0;
+  for (const auto& e : t.entries) {
+    const double err = e.granular_angle_deg - e.gas_angle_deg;
+    if (!std::isfinite(e.loo_restitution) || !std::isfinite(err)) continue;
+    ss += err * err;
+    ++n;
+  }
+  return n >= 2 ? std::sqrt(ss / n) : kNaN;
 }
 
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,

@@ -17,6 +17,9 @@ inline double number_or_nan(const nlohmann::json& j, const char* key) {
                                                                 : scene::kNaN;
 }
 
+// v, or null when it is not finite (JSON has no NaN).
+inline nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
 // `prec` significant digits; "n/a" for what is not finite.
 inline std::string format_number(double v, int prec = 3) {
   if (!std::isfinite(v)) return "n/a";

@@ -77,12 +77,13 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
   if (!s.body) throw scene::InputError(s.source_file + ": predict needs a body scene");
   (void)make_predictor(o.predictor);  // unknown names fail before any work
   scene::make_dirs(o.out_dir);
-  const std::string calib = o.predictor == "granular" ? apply_calibration(s, o.calibration_path) : "";
-  const Prediction p = predict_shock(s, o.predictor, o.out_dir, o.np);
+  const AppliedCalibration calib =
+      o.predictor == "granular" ? apply_calibration(s, o.calibration_path) : AppliedCalibration{};
+  const Prediction p = predict_shock(s, o.predictor, o.out_dir, o.np, false, calib.angle_scatter_deg);
   nlohmann::json j = p.summary();
   j["scene"] = s.name;
   j["reference"] = prediction_reference(s, p);
-  if (!calib.empty()) j["calibration"] = calib;
+  if (!calib.note.empty()) j["calibration"] = calib.note;
   const std::string csv = o.out_dir + "/shock.csv";
   if (fs::weakly_canonical(p.shock_csv) != fs::weakly_canonical(csv))
     fs::copy_file(p.shock_csv, csv, fs::copy_options::overwrite_existing);

@@ -69,6 +69,14 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
   return c;
 }
 
+double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {
+  // Two-sided 95% point of the normal distribution.
+  constexpr double kZ95 = 1.96;
+  const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
+  if (!std::isfinite(calibration_scatter_deg)) return angle_ci_deg;
+  return std::hypot(own, kZ95 * calibration_scatter_deg);
+}
+
 std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
   std::vector<ShockPoint> out;
   for (const auto& r : scene::read_shock_csv(path).rows)

@@ -10,11 +10,14 @@
 // inviscid shock starts at the apex; a band round the stations missed it,
 // and the clustered grids' error stalled where the shock ran through graded
 // cells (docs/meshgen.md, "The band on an attached shock").
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "json_fields.hpp"
 #include "pipeline/predictors.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/stage_cache.hpp"
 #include "scene/body.hpp"
 
 namespace pipeline {
@@ -52,10 +55,14 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.wall_seconds = number_or_nan(r, "granular_wall_seconds");
   p.fingerprint = r.value("fingerprint", "");
   p.shock_csv = cx.out_dir + "/shockfit/shock.csv";
+  const double band_ci =
+      band_angle_half_width_deg(p.shock_angle_ci_deg, cx.calibration_angle_scatter_deg);
   if (p.kind == scene::ShockKind::attached && std::isfinite(p.shock_angle_deg)) {
     const ShockCurve ray =
         apex_ray(scene::scene_domain(cx.scene), scene::make_body(*cx.scene.body).nose,
-                 p.shock_angle_deg, p.shock_angle_ci_deg);
+                 p.shock_angle_deg, band_ci);
+    // The band is part of the prediction: grids meshed round another band are stale.
+    p.fingerprint = fingerprint({p.fingerprint, fmt::format("band {:.17g}", band_ci)});
     p.curve = ray.points;
     p.half_width = ray.half_width;
     p.shock_csv = cx.out_dir + "/shock_ray.csv";
@@ -69,6 +76,8 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.details = {{"restitution", cx.scene.granular.restitution},
                {"granular", r.value("granular", nlohmann::json::object())},
                {"field", r.value("field", "")},
+               {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
+               {"band_angle_half_width_deg", json_number(band_ci)},
                {"averaging", averaging_report(r)}};
   return p;
 }

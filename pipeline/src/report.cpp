@@ -438,6 +438,16 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
   else md << "standoff " << format_number(number_or_nan(g, "standoff"), 4) << " (relative error " << format_number(number_or_nan(g, "relative_error"), 3) << ")";
   md << ", CPU " << format_number(number_or_nan(g, "cpu_seconds"), 3) << " s (wall " << format_number(number_or_nan(g, "wall_seconds"), 3)
      << " s).";
+  const nlohmann::json details = g.value("details", nlohmann::json::object());
+  const double band = number_or_nan(details, "band_angle_half_width_deg");
+  const double scatter = number_or_nan(details, "calibration_angle_scatter_deg");
+  if (in.prediction.kind == scene::ShockKind::attached && std::isfinite(band))
+    md << " Meshed as the ray from the apex at that angle, its band +-" << format_number(band, 3) << " deg"
+       << (std::isfinite(scatter) ? " (the angle's own 95% interval +-" + format_number(number_or_nan(g, "shock_angle_ci_deg"), 3) +
+                                        " deg combined with 1.96 times the calibration's out-of-sample RMS, " +
+                                        format_number(scatter, 3) + " deg)"
+                                  : " (the angle's own 95% interval; the scene sets its restitution, so no calibration scatter)")
+       << ".";
   if (angle && std::abs(number_or_nan(g, "error_deg")) > 1.0)
     md << " **The predicted shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
   md << "\n\n";

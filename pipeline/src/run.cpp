@@ -143,13 +143,6 @@ std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR)
 
 namespace {
 
-// The table applied to the scene (apply_calibration), and what the table
-// cost to make: NaN when the scene sets its restitution or there is no table.
-struct AppliedCalibration {
-  std::string note;
-  double cpu_seconds = kNaN;
-};
-
 AppliedCalibration calibrate_scene(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return {};
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
@@ -162,19 +155,21 @@ AppliedCalibration calibrate_scene(scene::Scene& s, const std::string& table_pat
   const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
+  // The wedge table's angle scatter says nothing about a bow shock's standoff.
+  const double scatter = angle_deg ? out_of_sample_angle_rms_deg(t) : kNaN;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
                 angle_deg ? ""
                           : " (by Mach number alone: the table is calibrated on wedges, so this is "
                             "an extrapolation)");
-  return {buf, t.cpu_seconds};
+  return {buf, t.cpu_seconds, scatter};
 }
 
 }  // namespace
 
-std::string apply_calibration(scene::Scene& s, const std::string& table_path) {
-  return calibrate_scene(s, table_path).note;
+AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
+  return calibrate_scene(s, table_path);
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
@@ -234,9 +229,9 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
 }
 
 Prediction predict_shock(const scene::Scene& s, const std::string& predictor, const std::string& out_dir, int np,
-                         bool force) {
+                         bool force, double calibration_angle_scatter_deg) {
   const auto p = make_predictor(predictor);
-  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force});
+  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force, calibration_angle_scatter_deg});
 }
 
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
@@ -245,7 +240,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const auto t_start = std::chrono::steady_clock::now();
   scene::make_dirs(o.out_dir);
   const scene::DirLock lock(o.out_dir);
-  const AppliedCalibration calib = calibrate_scene(s, o.calibration_path);
+  const AppliedCalibration calib = apply_calibration(s, o.calibration_path);
   const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
   const std::string& calib_note = calib.note;
   if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
@@ -259,7 +254,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
 
   // The prediction: where the clustered grids put their fine band.
   const bool force_prediction = o.force.count("granular") || o.force.count("shockfit") || o.force.count("all");
-  const Prediction pred = predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np, force_prediction});
+  const Prediction pred = predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np,
+                                              force_prediction, calib.angle_scatter_deg});
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");

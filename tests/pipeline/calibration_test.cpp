@@ -5,12 +5,11 @@
 
 #include <cmath>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "pipeline/calibration_report.hpp"
-#include "pipeline/studies.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/studies.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
@@ -24,7 +23,7 @@ TEST(Calibration, RoundTripAndInterpolation) {
   ASSERT_EQ(back.entries.size(), 2u);
   EXPECT_DOUBLE_EQ(back.entries[1].restitution, 0.6);
   EXPECT_DOUBLE_EQ(*pipeline::interpolate_restitution(back, 3, 10), 0.8);  // exact match
-  const double mid = *pipeline::interpolate_restitution(back, 4, 15);       // equidistant
+  const double mid = *pipeline::interpolate_restitution(back, 4, 15);      // equidistant
   EXPECT_NEAR(mid, 0.7, 1e-12);
   EXPECT_FALSE(pipeline::interpolate_restitution(pipeline::CalibrationTable{}, 3, 10).has_value());
   // Blunt bodies (no angle): by Mach alone, M = 3 matches the first entry.
@@ -37,10 +36,14 @@ TEST(Calibration, AppliedOnlyWhenTheSceneLeavesRestitutionUnset) {
   const auto path = (std::filesystem::temp_directory_path() / "calib_apply.yaml").string();
   pipeline::write_calibration(t, path);
   auto s = scene::parse_scene("body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
-  EXPECT_NE(pipeline::apply_calibration(s, path).find("from the calibration table"), std::string::npos);
+  const auto applied = pipeline::apply_calibration(s, path);
+  EXPECT_NE(applied.note.find("from the calibration table"), std::string::npos);
   EXPECT_DOUBLE_EQ(s.granular.restitution, 0.8);
-  auto given = scene::parse_scene("body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\ngranular: {restitution: 0.95}\n");
-  EXPECT_EQ(pipeline::apply_calibration(given, path), "");
+  // An old table's reruns are in sample: no out-of-sample scatter to widen a band with.
+  EXPECT_TRUE(std::isnan(applied.angle_scatter_deg));
+  auto given = scene::parse_scene(
+      "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\ngranular: {restitution: 0.95}\n");
+  EXPECT_EQ(pipeline::apply_calibration(given, path).note, "");
   EXPECT_DOUBLE_EQ(given.granular.restitution, 0.95);
 }
 
@@ -68,6 +71,8 @@ pipeline::CalibrationTable fitted_table() {
   b.mach = 6;
   b.angle_deg = 20;
   b.restitution = 0.96;
+  b.gas_angle_deg = 28.26;
+  b.granular_angle_deg = 29.66;  // out-of-sample errors +0.3 and +1.4 deg
   t.entries = {a, b};
   // Coefficients with all 17 digits significant (1/3 and friends).
   t.fits = {{pipeline::RestitutionModel::inverse_mach2,
@@ -100,7 +105,8 @@ TEST(Calibration, FittedTableRoundTripsAtFullPrecision) {
     EXPECT_DOUBLE_EQ(back.fits[i].residual_sd, t.fits[i].residual_sd);
     EXPECT_DOUBLE_EQ(back.fits[i].loo_rms, t.fits[i].loo_rms);
   }
-  EXPECT_DOUBLE_EQ(back.cpu_seconds, 1094.5);  // what the table cost, for the reports' amortised line
+  EXPECT_DOUBLE_EQ(back.cpu_seconds,
+                   1094.5);            // what the table cost, for the reports' amortised line
   ASSERT_EQ(back.entries.size(), 2u);  // the per-point entries are kept
   EXPECT_DOUBLE_EQ(back.entries[1].restitution, 0.96);
   EXPECT_NEAR(back.entries[0].loo_restitution, 0.991235, 1e-12);  // entries at 6 digits
@@ -125,9 +131,16 @@ TEST(Calibration, FittedTableAppliedToAScene) {
   const auto path = (std::filesystem::temp_directory_path() / "calib_fit_apply.yaml").string();
   pipeline::write_calibration(fitted_table(), path);
   auto s = scene::parse_scene("body: {kind: wedge, angle_deg: 15}\nfreestream: {mach: 4}\n");
-  EXPECT_NE(pipeline::apply_calibration(s, path).find("from the calibration table"),
-            std::string::npos);
+  const auto applied = pipeline::apply_calibration(s, path);
+  EXPECT_NE(applied.note.find("from the calibration table"), std::string::npos);
   EXPECT_NEAR(s.granular.restitution, 0.9491 + (2.0 / 7.0) / 16.0 + 15.0 / 1300.0, 1e-6);
+  // The RMS of the out-of-sample angle errors, +0.3 and +1.4 deg.
+  const double rms = std::sqrt((0.3 * 0.3 + 1.4 * 1.4) / 2.0);
+  EXPECT_NEAR(applied.angle_scatter_deg, rms, 1e-9);
+  EXPECT_NEAR(pipeline::out_of_sample_angle_rms_deg(fitted_table()), rms, 1e-9);
+  // A wedge's angle scatter is not a bow shock's: a disc gets none.
+  auto disc = scene::parse_scene("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
+  EXPECT_TRUE(std::isnan(pipeline::apply_calibration(disc, path).angle_scatter_deg));
 }
 
 TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
@@ -196,17 +209,22 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
   j["crossings"] = nlohmann::json::array();
   for (const double m : {2.0, 2.5, 3.5, 4.5, 6.0})
     for (const double a : {8.0, 14.0})
-      j["crossings"].push_back({{"mach", m}, {"angle_deg", a}, {"restitution", 0.95 + 0.2 / (m * m)},
+      j["crossings"].push_back({{"mach", m},
+                                {"angle_deg", a},
+                                {"restitution", 0.95 + 0.2 / (m * m)},
                                 {"restitution_ci", 0.002}});
   // A case study with a wild e: it must not enter the fit.
-  j["crossings"].push_back({{"mach", 3.0}, {"angle_deg", 10.0}, {"restitution", 0.5}, {"restitution_ci", 0.002}});
+  j["crossings"].push_back(
+      {{"mach", 3.0}, {"angle_deg", 10.0}, {"restitution", 0.5}, {"restitution_ci", 0.002}});
   scene::write_file_atomic((dir / "points.json").string(), j.dump());
-  const auto r = pipeline::calibrate_from_points((dir / "points.json").string(), (dir / "table.yaml").string());
+  const auto r = pipeline::calibrate_from_points((dir / "points.json").string(),
+                                                 (dir / "table.yaml").string());
   EXPECT_EQ(r["points"].get<int>(), 10);
   EXPECT_EQ(r["case_studies_left_out"].get<int>(), 1);
   const auto t = pipeline::read_calibration((dir / "table.yaml").string());
   EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4.0, 12.0), 0.95 + 0.2 / 16.0, 1e-9);
   scene::write_file_atomic((dir / "bad.json").string(), "{\"crossings\": 3}");
   EXPECT_THROW(pipeline::calibrate_from_points((dir / "bad.json").string(), ""), scene::InputError);
-  EXPECT_THROW(pipeline::calibrate_from_points((dir / "missing.json").string(), ""), scene::InputError);
+  EXPECT_THROW(pipeline::calibrate_from_points((dir / "missing.json").string(), ""),
+               scene::InputError);
 }

@@ -1,16 +1,16 @@
 // Shock predictors behind the registry: the correlation (fast, exact on
 // attached wedges), the coarse CFD run (real gmsh and OpenFOAM, slow), and
 // `pipeline predict`'s bad input.
+#include "pipeline/predictor.hpp"
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cmath>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "meshgen/mesh.hpp"
-#include "pipeline/predictor.hpp"
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 using scene::kDeg;
+using scene::kNaN;
 const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
@@ -38,17 +39,21 @@ int run_cli(const std::string& args) {
 }  // namespace
 
 TEST(Predictor, RegistryNamesEveryPredictorAndRefusesUnknownOnes) {
-  for (const auto& n : pipeline::predictor_names()) EXPECT_EQ(pipeline::make_predictor(n)->name(), n);
+  for (const auto& n : pipeline::predictor_names())
+    EXPECT_EQ(pipeline::make_predictor(n)->name(), n);
   try {
     (void)pipeline::make_predictor("hessian");
     FAIL() << "unknown predictor accepted";
   } catch (const scene::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("granular, correlation, coarse_cfd, adapt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("granular, correlation, coarse_cfd, adapt"),
+              std::string::npos)
+        << e.what();
   }
 }
 
 TEST(Predictor, CorrelationIsTheExactObliqueShockOnAnAttachedWedge) {
-  const auto s = scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
+  const auto s =
+      scene::parse_scene("name: w\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   const auto dir = fresh("corr_wedge");
   const auto p = pipeline::predict_shock(s, "correlation", dir.string(), 1);
   ASSERT_EQ(p.kind, scene::ShockKind::attached);
@@ -63,7 +68,8 @@ TEST(Predictor, CorrelationIsTheExactObliqueShockOnAnAttachedWedge) {
 }
 
 TEST(Predictor, CorrelationIsBilligsShockOnADisc) {
-  const auto s = scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
+  const auto s =
+      scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
   const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_disc").string(), 1);
   ASSERT_EQ(p.kind, scene::ShockKind::detached);
   // Standoff in body lengths (radii): Billig's 0.386 exp(4.67/M^2).
@@ -77,31 +83,38 @@ TEST(Predictor, CorrelationIsBilligsShockOnADisc) {
 }
 
 TEST(Predictor, CorrelationOnApolloStatesItsApproximation) {
-  const auto s = scene::parse_scene("name: a\nbody: {kind: apollo, diameter: 1}\nfreestream: {mach: 5}\n");
+  const auto s =
+      scene::parse_scene("name: a\nbody: {kind: apollo, diameter: 1}\nfreestream: {mach: 5}\n");
   const auto p = pipeline::predict_shock(s, "correlation", fresh("corr_apollo").string(), 1);
   ASSERT_EQ(p.kind, scene::ShockKind::detached);
-  EXPECT_NE(p.details.value("correlation", "").find("approximation"), std::string::npos) << p.details.dump();
+  EXPECT_NE(p.details.value("correlation", "").find("approximation"), std::string::npos)
+      << p.details.dump();
   EXPECT_GT(p.standoff_ci, 0.2 * p.standoff) << "an approximate correlation must carry a wide band";
 }
 
 TEST(Predictor, PredictCommandRefusesBadInput) {
   const auto out = fresh("cli_bad");
-  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor nonsense --out " + out.string()), 2);
+  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor nonsense --out " +
+                    out.string()),
+            2);
   EXPECT_EQ(run_cli("predict /nonexistent.yaml --predictor correlation --out " + out.string()), 2);
-  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --out " + out.string()), 2) << "--predictor is required";
+  EXPECT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --out " + out.string()), 2)
+      << "--predictor is required";
   EXPECT_FALSE(fs::exists(out / "summary.json"));
 }
 
 TEST(Predictor, PredictCommandWritesTheContractKeys) {
   const auto out = fresh("cli_ok");
-  ASSERT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor correlation --out " + out.string()), 0);
+  ASSERT_EQ(run_cli("predict " + kData + "/wedge_verdict.yaml --predictor correlation --out " +
+                    out.string()),
+            0);
   const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
-  for (const char* k : {"predictor", "shock", "shock_angle_deg", "shock_angle_ci_deg", "cpu_seconds", "reference"})
+  for (const char* k :
+       {"predictor", "shock", "shock_angle_deg", "shock_angle_ci_deg", "cpu_seconds", "reference"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_NEAR(j["reference"]["error"].get<double>(), 0.0, 1e-9);
   EXPECT_TRUE(fs::exists(out / "shock.csv"));
 }
-
 
 TEST(Predictor, ApexRayStartsAtTheApexAndWidensWithTheAngleInterval) {
   const scene::Domain d{-0.2, 1.0, 0.0, 0.8, true};
@@ -135,4 +148,24 @@ TEST(Predictor, GranularHandsAnAttachedShockAsTheApexRay) {
   const auto req = meshgen::request_from_shock_csv(p.shock_csv);
   EXPECT_EQ(req.shock_curve.size(), p.curve.size());
   EXPECT_TRUE(fs::exists(dir / "shockfit" / "shock.csv")) << "the measured stations stay";
+  // Without a calibration's scatter the band is the fitted angle's own interval.
+  const auto end = p.curve.back();
+  EXPECT_NEAR(p.half_width.back(), scene::norm(end) * std::tan(p.shock_angle_ci_deg * kDeg), 1e-9);
+
+  // With it (the same cached granular run), the band widens by the
+  // calibration's 95% scatter, and the prediction's fingerprint changes so
+  // that no grid meshed round the narrower band is reused.
+  constexpr double kScatter = 1.2;
+  const auto wide = pipeline::predict_shock(s, "granular", dir.string(), 1, false, kScatter);
+  EXPECT_EQ(wide.shock_angle_deg, p.shock_angle_deg);
+  const double band = std::hypot(p.shock_angle_ci_deg, 1.96 * kScatter);
+  EXPECT_NEAR(wide.half_width.back(), scene::norm(end) * std::tan(band * kDeg), 1e-9);
+  EXPECT_NEAR(wide.details.at("band_angle_half_width_deg").get<double>(), band, 1e-12);
+  EXPECT_NE(wide.fingerprint, p.fingerprint);
+}
+
+TEST(Predictor, BandAngleCombinesTheIntervalWithTheCalibrationScatter) {
+  EXPECT_NEAR(pipeline::band_angle_half_width_deg(0.6, 1.0), std::hypot(0.6, 1.96), 1e-15);
+  EXPECT_EQ(pipeline::band_angle_half_width_deg(0.6, kNaN), 0.6);  // a scene's own restitution
+  EXPECT_NEAR(pipeline::band_angle_half_width_deg(kNaN, 1.0), 1.96, 1e-15);
 }

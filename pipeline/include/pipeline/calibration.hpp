@@ -48,6 +48,13 @@ void write_calibration(const CalibrationTable& t, const std::string& path);
 // by inverse distance in (Mach, angle) scaled by (1, 5 deg) (an exact match
 // returns its entry's e; a NaN angle weighs the entries by Mach alone).
 // nullopt for an empty table.
+// The RMS of the out-of-sample angle errors (granular_angle_deg -
+// gas_angle_deg, each measured at its leave-one-out restitution) over the
+// entries that have one: how far a prediction from this table misses the gas
+// angle, the run's own noise included. NaN for an old table (its reruns are
+// in sample) or fewer than two such entries.
+double out_of_sample_angle_rms_deg(const CalibrationTable& t);
+
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
                                               double angle_deg);
 

@@ -11,11 +11,10 @@
 //               Hessian of its density: grids adapted as a CFD engineer
 //               would, instead of a band round a curve
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/scene.hpp"
 #include "scene/shock_kind.hpp"
@@ -34,12 +33,12 @@ struct Prediction {
   double standoff = scene::kNaN;  // body lengths
   double standoff_ci = scene::kNaN;
   double cpu_seconds = 0, wall_seconds = 0;
-  std::string shock_csv;     // the curve as written for meshgen
+  std::string shock_csv;  // the curve as written for meshgen
   // Predictors that size grids themselves (adapt): per family level, a
   // size field .vti (field "h", body lengths) meshed instead of the band
   // round the curve.
   std::vector<std::pair<double, std::string>> size_fields;
-  std::string fingerprint;   // changes whenever the prediction would
+  std::string fingerprint;                            // changes whenever the prediction would
   nlohmann::json details = nlohmann::json::object();  // predictor-specific figures
   // `predictor`, `shock`, angle or standoff with its interval, `cpu_seconds`,
   // `size_fields` (level and path; empty for band predictors), details.
@@ -49,9 +48,14 @@ struct Prediction {
 struct PredictContext {
   const scene::Scene& scene;
   std::string out_dir;  // the predictor's own directory (cached stages live below it)
-  std::string run_dir;  // the pipeline run's directory: CFD grids shared with the families live there
+  std::string
+      run_dir;  // the pipeline run's directory: CFD grids shared with the families live there
   int np = 1;
-  bool force = false;   // recompute cached stages
+  bool force = false;  // recompute cached stages
+  // The calibration table's out-of-sample scatter of the granular shock
+  // angle (deg, RMS), when the scene's restitution came from the table and
+  // the body has a wedge angle; NaN otherwise. Widens an attached shock's band.
+  double calibration_angle_scatter_deg = scene::kNaN;
 };
 
 class Predictor {
@@ -80,7 +84,14 @@ struct ShockCurve {
   std::vector<scene::Vec2> points;
   std::vector<double> half_width;
 };
-ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg, double angle_ci_deg);
+ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
+                    double angle_ci_deg);
+
+// The 95% half-width of the angle an attached shock's band covers: the
+// measured angle's own interval combined in quadrature with the calibration's
+// out-of-sample scatter (kZ95 times its RMS), which the run's interval cannot
+// see: the restitution itself is a fit. A NaN scatter adds nothing.
+double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg);
 
 struct ShockPoint {
   scene::Vec2 point;

@@ -2,30 +2,38 @@
 // `pipeline run`: a shock predictor (granular gas + shockfit by default) ->
 // meshgen (clustered and uniform families) -> rhoCentralFoam on each grid ->
 // verdict and report.
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
 struct RunOptions {
   std::string out_dir;
-  int np = 1;                       // MPI ranks for granular replicas and OpenFOAM
-  std::set<std::string> force;      // stages to rerun: granular, shockfit, meshgen, cfd, report, all
-  std::string calibration_path;     // restitution table ("" = scene's or built-in)
+  int np = 1;                    // MPI ranks for granular replicas and OpenFOAM
+  std::set<std::string> force;   // stages to rerun: granular, shockfit, meshgen, cfd, report, all
+  std::string calibration_path;  // restitution table ("" = scene's or built-in)
   std::string predictor = "granular";  // predictor.hpp's registry
   // summary<suffix>.json and report<suffix>.md: the league keeps one per
   // predictor beside the shared grids. Default: "" for granular, else _<name>.
   std::optional<std::string> output_suffix;
 };
 
+// What a calibration table gave a scene.
+struct AppliedCalibration {
+  std::string note;                  // for the report ("" if nothing changed)
+  double cpu_seconds = scene::kNaN;  // what the table cost to make (NaN: not recorded, or no table)
+  // The table's out-of-sample angle scatter (deg, RMS) when the restitution
+  // came from it and the body has a wedge angle; NaN otherwise.
+  double angle_scatter_deg = scene::kNaN;
+};
 // Applies the calibration table when the scene leaves granular.restitution
-// unset (wedges only); returns a note for the report ("" if nothing changed).
-std::string apply_calibration(scene::Scene& s, const std::string& table_path);
+// unset; bodies without a wedge angle take its Mach-only fit.
+AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path);
 
 // The family name of a predictor's clustered grids in runs[] ("clustered"
 // for granular, "clustered-<name>" otherwise).
@@ -42,8 +50,9 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
 // The named predictor's shock for the scene, its stages cached under
 // out_dir (granular: out_dir itself; others: out_dir/predict/<name>).
 struct Prediction;
-Prediction predict_shock(const scene::Scene& s, const std::string& predictor, const std::string& out_dir, int np,
-                         bool force = false);
+Prediction predict_shock(const scene::Scene& s, const std::string& predictor,
+                         const std::string& out_dir, int np, bool force = false,
+                         double calibration_angle_scatter_deg = scene::kNaN);
 
 // Path of the built-in calibration table (pipeline/calibration.yaml in the source tree).
 std::string builtin_calibration_path();

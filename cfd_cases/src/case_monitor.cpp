@@ -1,11 +1,11 @@
 #include "case_monitor.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "foam_process.hpp"
 #include "scene/body_traits.hpp"
@@ -27,13 +27,15 @@ constexpr double kWallWindowEnd = 0.9;
 constexpr double kTinyForce = 1e-300;
 }  // namespace
 
-CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int np) : case_dir_(case_dir) {
+CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int np)
+    : case_dir_(case_dir) {
   if (np > 1) {
     for (int k = 0; k < np; ++k) part_dirs_.push_back(case_dir + "/processor" + std::to_string(k));
   } else {
     part_dirs_.push_back(case_dir);
   }
   for (const auto& d : part_dirs_) parts_.push_back(read_mesh_2d(d));
+  probe_ = ShockProbe::for_scene(s, parts_);
   const std::optional<double> ramp = s.body ? scene::straight_ramp_length(*s.body) : std::nullopt;
   wedge_ = ramp.has_value();
   if (wedge_) wedge_length_ = *ramp;
@@ -65,8 +67,9 @@ Snapshot CaseReader::read(const TimeDir& t) const {
     const auto p = read_scalar_field(dir + "/p", m.cells());
     for (std::size_t c = 0; c < m.cells(); ++c) {
       if (!(std::isfinite(rho[c]) && std::isfinite(p[c]) && rho[c] > 0 && p[c] > 0))
-        throw NonPhysicalState(fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
-                                          rho[c], p[c], c, t.name, dir));
+        throw NonPhysicalState(
+            fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
+                        rho[c], p[c], c, t.name, dir));
     }
     s.rho.insert(s.rho.end(), rho.begin(), rho.end());
     for (const WallFace& f : m.body) {
@@ -82,6 +85,7 @@ Snapshot CaseReader::read(const TimeDir& t) const {
     }
   }
   s.wall_pressure_ratio = wedge_ && wall_a > 0 ? wall_pa / wall_a / p_inf_ : scene::kNaN;
+  if (probe_) s.shock = probe_->measure(s.rho);
   return s;
 }
 
@@ -107,17 +111,29 @@ HistoryRow compare(const Snapshot& prev, const Snapshot& cur, const std::vector<
   r.drho_max = mx / rho_inf * per;
   const double fm = std::max(std::hypot(cur.force.x, cur.force.y), kTinyForce);
   r.dforce = std::hypot(cur.force.x - prev.force.x, cur.force.y - prev.force.y) / fm * per;
+  r.shock_x = cur.shock.x;
+  r.shock_cell = cur.shock.cell;
+  r.dshock = (cur.shock.x - prev.shock.x) * per;
   return r;
 }
 
-void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows, double steady_tol,
-                   double force_tol, bool plot) {
+void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows,
+                   double steady_tol, double force_tol, bool plot) {
+  // The shock columns come last, so readers of the older columns by
+  // position keep working; a value not measured is an empty field.
+  const auto opt = [](double v) {
+    return std::isfinite(v) ? fmt::format("{:.8g}", v) : std::string();
+  };
   std::ostringstream o;
-  o << "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,wall_pressure_ratio\n";
+  o << "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,wall_"
+       "pressure_ratio,"
+       "shock_x,dshock,shock_drift,shock_cell\n";
   for (const HistoryRow& r : rows)
-    o << fmt::format("{:.10g},{:.6g},{:.4f},{},{:.6e},{:.6e},{:.6e},{:.10g},{:.10g},{:.10g}\n", r.time,
-                     r.flow_throughs, r.wall_seconds, r.steps, r.drho_l2, r.drho_max, r.dforce, r.force.x,
-                     r.force.y, r.wall_pressure_ratio);
+    o << fmt::format(
+        "{:.10g},{:.6g},{:.4f},{},{:.6e},{:.6e},{:.6e},{:.10g},{:.10g},{:.10g},{},{},{},{}\n",
+        r.time, r.flow_throughs, r.wall_seconds, r.steps, r.drho_l2, r.drho_max, r.dforce,
+        r.force.x, r.force.y, r.wall_pressure_ratio, opt(r.shock_x), opt(r.dshock),
+        opt(r.shock_drift), opt(r.shock_cell));
   scene::write_file_atomic(case_dir + "/history.csv", o.str());
   if (rows.empty() || !plot) return;
   // The plot is for people; a missing gnuplot leaves only the CSV.

@@ -3,11 +3,13 @@
 // history rows (the measures between consecutive written times, in order)
 // and ask whether the run is steady and why. No OpenFOAM needed, so the rule
 // is tested on synthetic histories.
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "case_monitor.hpp"
 #include "scene/params_cfd.hpp"
+#include "scene/scene.hpp"
 
 namespace cfd {
 
@@ -29,13 +31,32 @@ struct SteadyCriteria {
   int steady_checks = 2;     // consecutive rows that must pass
   SteadyClock clock = SteadyClock::flow_throughs;
   long steps_per_flow_through = 0;  // iterations clock only
+  // Bow-shock drift gate, for bodies whose shock may stand off (0: none, as
+  // for attached shocks): no row passes while the shock on the stagnation
+  // line (HistoryRow::shock_x) moves, by its least-squares slope over the
+  // last kShockDriftRows rows, faster than shock_drift_tol (scene units per
+  // flow-through) and significantly (beyond kShockDriftSignificance standard
+  // errors of the slope, so that flicker does not count as motion).
+  double shock_drift_tol = 0.0;
 
   // The scene's rule for time-accurate runs.
   static SteadyCriteria time_accurate(const scene::CfdParams& p);
   // The scene's rule under local time stepping: the same tolerances, with
   // progress counted in iterations, steps_per_flow_through per flow-through.
   static SteadyCriteria iteration_windows(const scene::CfdParams& p, long steps_per_flow_through);
+  // These criteria with the bow-shock drift gate of the scene's body: on
+  // (kShockDriftPerLength body lengths per flow-through) when its shock may
+  // stand off (scene::shock_may_stand_off), off otherwise.
+  SteadyCriteria with_shock_drift_gate(const scene::Scene& s) const;
 };
+
+// Rows over which the shock's drift is fitted (2 flow-throughs at the default
+// write interval), its tolerance in body lengths per flow-through, and how
+// many standard errors of the fitted slope a drift must exceed to count
+// (steady_state.cpp says how they were chosen).
+inline constexpr std::size_t kShockDriftRows = 10;
+inline constexpr double kShockDriftPerLength = 0.01;
+inline constexpr double kShockDriftSignificance = 3.0;
 
 class SteadyState {
  public:
@@ -55,6 +76,13 @@ class SteadyState {
   const std::vector<HistoryRow>& rows() const { return rows_; }
 
  private:
+  struct ShockGate {
+    bool ok = true;
+    std::string why;  // empty when the gate does not apply
+  };
+  // The drift gate on the rows so far; sets the last row's shock_drift.
+  ShockGate shock_gate();
+
   SteadyCriteria c_;
   std::vector<HistoryRow> rows_;
   int consecutive_ = 0;

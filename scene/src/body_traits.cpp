@@ -31,6 +31,10 @@ bool reference_is_exact_oblique_shock(const Scene& s) {
   return attached_shock_beta(s).has_value();
 }
 
+bool shock_may_stand_off(const Scene& s) {
+  return s.body.has_value() && !attached_shock_beta(s).has_value();
+}
+
 std::optional<double> straight_ramp_length(const BodySpec& b) {
   switch (b.kind) {
     case BodyKind::wedge:
@@ -163,7 +167,8 @@ bool outflow_can_be_subsonic(const Scene& s) {
   // wedge: Mach 0.35-0.57 over the whole outflow).
   // Body and domain compute the station each their own way: equal to round-off.
   constexpr double kOnBoundary = 1e-9;
-  return stations(make_body(*s.body)).x_widest >= scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
+  return stations(make_body(*s.body)).x_widest >=
+         scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
 }
 
 }  // namespace scene

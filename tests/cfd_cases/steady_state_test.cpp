@@ -7,6 +7,9 @@
 #include <functional>
 #include <vector>
 
+#include "scene/scene.hpp"
+#include "scene/units.hpp"
+
 namespace {
 
 // Written times every 0.2 flow-throughs (the scene default), so min_time 1
@@ -169,6 +172,135 @@ TEST(SteadyState, CriteriaFollowTheScene) {
   EXPECT_EQ(c.min_time, 2.0);
   EXPECT_EQ(c.steady_checks, 3);
   EXPECT_EQ(c.steps_per_flow_through, 1);  // never a division by zero
+}
+
+// The bow-shock drift gate. A disc of radius 0.5 at Mach 4: body length
+// 0.5 (the radius), so the gate's tolerance is 0.01 x 0.5 = 0.005 per
+// flow-through.
+constexpr double kDiscRadius = 0.5;
+constexpr double kDriftTol = cfd::kShockDriftPerLength * kDiscRadius;
+// A cell at the shock (0.2 radii) and the standoff's start (x of the shock).
+constexpr double kCell = 0.1;
+constexpr double kShockX = -0.8;
+
+scene::Scene disc_scene() {
+  return scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
+}
+
+cfd::SteadyCriteria blunt_criteria() {
+  return cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(disc_scene());
+}
+
+// The noise-floor plateau of NoisyPlateauAboveTheToleranceIsSteadyAtTheNoiseFloor
+// (steady at row 11 by the old rule), its shock on the stagnation line at
+// shock(k) for row k.
+std::vector<cfd::HistoryRow> plateau_with_shock(int n, const std::function<double(int)>& shock) {
+  auto rows = history(n, [](int k) {
+    const double noise = (k % 2 == 0 ? 0.1 : -0.1);
+    return Sample{0.1 * (1.0 + noise), 5e-3, kForce * (1.0 + 1e-4 * noise)};
+  });
+  for (int k = 1; k <= n; ++k) {
+    rows[static_cast<std::size_t>(k - 1)].shock_x = shock(k);
+    rows[static_cast<std::size_t>(k - 1)].shock_cell = kCell;
+  }
+  return rows;
+}
+
+TEST(ShockDriftGate, OnForBodiesWhoseShockMayStandOffOnly) {
+  const auto base = cfd::SteadyCriteria::time_accurate(defaults());
+  EXPECT_DOUBLE_EQ(base.with_shock_drift_gate(disc_scene()).shock_drift_tol, kDriftTol);
+  // An attached wedge (M3, 10 deg) is judged as before: no gate.
+  const scene::Scene attached = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
+  EXPECT_EQ(base.with_shock_drift_gate(attached).shock_drift_tol, 0.0);
+  // Beyond the maximum deflection (23 deg at Mach 2) the wedge's shock stands off.
+  const scene::Scene detached = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 30, length: 2}\nfreestream: {mach: 2}\n");
+  EXPECT_DOUBLE_EQ(base.with_shock_drift_gate(detached).shock_drift_tol,
+                   cfd::kShockDriftPerLength * 2.0);
+}
+
+TEST(ShockDriftGate, DriftingStandoffWithAFlatForceIsNotSteady) {
+  // The measured defect: the M1.3 disc's shock crept upstream at ~0.9 radii
+  // per flow-through while the force stayed within force_tol and the density
+  // change sat at its floor. Here a slower creep, 0.1 radii per flow-through
+  // (ten times the tolerance): the old rule calls it steady at row 11, the
+  // gate never.
+  const auto rows = plateau_with_shock(
+      30, [](int k) { return kShockX - 0.1 * kDiscRadius * k * kRowFlowThroughs; });
+  cfd::SteadyState old_rule(cfd::SteadyCriteria::time_accurate(defaults()));
+  EXPECT_EQ(steady_at(old_rule, rows), 11);
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), 0);
+  EXPECT_NE(rule.why().find("shock not settled: shock drift -0.05"), std::string::npos)
+      << rule.why();
+  EXPECT_NEAR(rule.rows().back().shock_drift, -0.1 * kDiscRadius, 1e-12);
+}
+
+TEST(ShockDriftGate, DriftingStandoffBlocksTheToleranceBranchToo) {
+  // Below steady_tol and force_tol from row 8 (as in
+  // DecayingHistoryIsSteadyOnceBelowBothTolerancesTwice) but the shock moves.
+  auto rows = history(30, [](int k) {
+    return Sample{std::pow(0.5, k - 1), 0.1 * std::pow(0.5, k - 1)};
+  });
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    rows[k].shock_x = kShockX - 4.0 * kDriftTol * rows[k].flow_throughs;
+    rows[k].shock_cell = kCell;
+  }
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), 0);
+}
+
+TEST(ShockDriftGate, FlickeringStandoffIsSteady) {
+  // A captured shock flickering back and forth by one cell on every row: its
+  // fitted slope is small against its scatter, so it does not count as
+  // moving; steady where the old rule was.
+  const auto rows =
+      plateau_with_shock(30, [](int k) { return kShockX + (k % 2 == 0 ? 0.5 : -0.5) * kCell; });
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), 11);
+  EXPECT_NE(rule.why().find("shock drift"), std::string::npos) << rule.why();
+}
+
+TEST(ShockDriftGate, SlowDriftWithinTheToleranceIsSteady) {
+  const auto rows = plateau_with_shock(
+      30, [](int k) { return kShockX - 0.5 * kDriftTol * k * kRowFlowThroughs; });
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), 11);
+}
+
+TEST(ShockDriftGate, NeedsAFullWindowOfRows) {
+  // Quiet from the start with the shock still: the old rule is steady at row
+  // 6; the gate first has a window at row kShockDriftRows (10), steady at 11.
+  auto rows = history(20, [](int) { return Sample{1e-3, 1e-4}; });
+  for (auto& r : rows) {
+    r.shock_x = kShockX;
+    r.shock_cell = kCell;
+  }
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), static_cast<int>(cfd::kShockDriftRows) + 1);
+}
+
+TEST(ShockDriftGate, AttachedWedgeIsJudgedAsBefore) {
+  const scene::Scene attached = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
+  const auto rows = plateau_with_shock(30, [](int k) { return kShockX - k; });
+  cfd::SteadyState rule(
+      cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(attached));
+  EXPECT_EQ(steady_at(rule, rows), 11);
+  EXPECT_EQ(rule.why().find("shock"), std::string::npos) << rule.why();
+}
+
+TEST(ShockDriftGate, NoShockAheadOfTheNosePassesAShockFoundOnPartOfTheWindowDoesNot) {
+  // Never measured (a shock attached to a pointed nose): nothing to drift.
+  const auto none = plateau_with_shock(30, [](int) { return scene::kNaN; });
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, none), 11);
+  EXPECT_NE(rule.why().find("no shock ahead of the nose"), std::string::npos) << rule.why();
+  // Found from row 8 on: the window holds only measured rows from row 17.
+  const auto late = plateau_with_shock(30, [](int k) { return k < 8 ? scene::kNaN : kShockX; });
+  cfd::SteadyState late_rule(blunt_criteria());
+  EXPECT_EQ(steady_at(late_rule, late), 18);
 }
 
 }  // namespace

@@ -18,6 +18,12 @@ std::optional<double> attached_shock_beta(const BodySpec& b, double mach, double
 // True when the exact inviscid reference of the scene's flow is the uniform
 // state behind an attached oblique shock (so the whole field is known).
 bool reference_is_exact_oblique_shock(const Scene& s);
+// True when the scene's shock may stand off the body, ahead of its nose on
+// the stagnation line (the symmetry line y = make_body(...).nose.y): every
+// body without an attached oblique shock (discs, Apollo, polygons, whose
+// nose may be blunt, and wedges beyond their maximum deflection). A polygon
+// whose pointed nose carries an attached shock has none ahead of the nose.
+bool shock_may_stand_off(const Scene& s);
 
 // Face length, in scene units, when the body is a single straight ramp from
 // the origin at angle_deg (the wall on which an inviscid flow has a uniform

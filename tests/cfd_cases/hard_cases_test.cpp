@@ -5,6 +5,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
 
 #include "cfd/run_case.hpp"
 #include "meshgen/mesh.hpp"
@@ -12,6 +16,7 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/units.hpp"
+#include "steady_state.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -38,7 +43,8 @@ void expect_finite_positive(const scene::Lattice& lat) {
 
 // The Apollo capsule impulsively started at Mach 5, on a coarse uniform
 // meshgen grid (h = 0.05 D) written to mesh_dir; `cfd` is the scene's cfd section.
-constexpr const char* kApolloM5 = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
+constexpr const char* kApolloM5 =
+    "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
 scene::Scene apollo_on_coarse_grid(const std::string& mesh_dir, const std::string& cfd) {
   const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: " + cfd + "\n");
   meshgen::MeshRequest req;
@@ -55,7 +61,8 @@ TEST(HardCases, Mach8WedgeStaysStable) {
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 5000, d + "/mesh");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
-  const double exact = scene::oblique_pressure_ratio(8.0, *scene::oblique_shock_beta(8.0, 15 * kDeg, 1.4), 1.4);
+  const double exact =
+      scene::oblique_pressure_ratio(8.0, *scene::oblique_shock_beta(8.0, 15 * kDeg, 1.4), 1.4);
   EXPECT_NEAR(r.wall_pressure_ratio, exact, kMach8WallTol * exact);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 60));
 }
@@ -78,7 +85,8 @@ TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
       EXPECT_TRUE(std::filesystem::exists(d + "/kurganov/log.rhoCentralFoam"));  // case kept
     }
   }
-  const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
+  const scene::Scene s =
+      scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/tadmor", {});
   EXPECT_GT(r.steps, 0);
   EXPECT_GT(r.sim_time, 0.0);
@@ -90,7 +98,8 @@ TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 5000, d + "/mesh", kSkewGrading);
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
-  const double exact = scene::oblique_pressure_ratio(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 1.4);
+  const double exact =
+      scene::oblique_pressure_ratio(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 1.4);
   EXPECT_TRUE(r.steady_state_reached);
   EXPECT_NEAR(r.wall_pressure_ratio, exact, kSkewedWallTol * exact);
 }
@@ -106,15 +115,18 @@ TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
   const std::string d = cfd_test::scratch_dir();
   const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
   const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
-  EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos) << r.fallback;
+  EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos)
+      << r.fallback;
   EXPECT_NE(r.fallback.find("diverged"), std::string::npos) << r.fallback;
   EXPECT_GT(r.sim_time, 0.0);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
   const std::string summary = scene::read_file(d + "/case/summary.json");
   EXPECT_NE(summary.find("\"fallback\": \"flux_scheme Tadmor"), std::string::npos) << summary;
 
-  const scene::Scene strict = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
-  EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}), cfd::Diverged);
+  const scene::Scene strict =
+      scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
+  EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}),
+               cfd::Diverged);
 }
 
 TEST(HardCases, RobustSettingsAreTadmorMinmodAndHalfTheCourantNumber) {
@@ -144,44 +156,88 @@ TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
   // this grid (docs/reliability.md); the fallback must carry it to a
   // measured steady state with finite, positive fields.
   const scene::Scene s = scene::parse_scene(
-      "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, h_max: 0.2}\n");
+      "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, "
+      "h_max: 0.2}\n");
   const std::string d = cfd_test::scratch_dir();
   const cfd::CaseResult r = run_on_uniform_grid(s, d);
   EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos) << "the default start no longer diverges: " << r.fallback;
+  EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos)
+      << "the default start no longer diverges: " << r.fallback;
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
 }
 
 namespace {
-// The Mach 1.3 disc's bow shock stands about 6 radii off (Billig's
-// correlation, fitted at higher Mach numbers); on this grid (one cell per
-// radius) the captured shock is ~3 cells thick and still creeping upstream
-// by a few % per flow-through when the run is steady by the tolerances.
-constexpr double kNearSonicStandoffTol = 0.3;
+// The last row of a case's history.csv, by column name.
+std::map<std::string, double> last_history_row(const std::string& csv) {
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line)) last = line;
+  std::map<std::string, double> row;
+  std::stringstream hs(header), ls(last);
+  std::string name, value;
+  while (std::getline(hs, name, ',')) {
+    if (!std::getline(ls, value, ',')) value.clear();
+    row[name] = value.empty() ? scene::kNaN : std::stod(value);
+  }
+  return row;
+}
+
+// The disc at Mach 4 on a coarse uniform grid (h 0.2 = 0.4 radii, the case
+// studies' uniform_h10, 559 cells): the shock probe's standoff on the
+// stagnation line came out 0.578 R there against Billig's 0.517 R (+12 %);
+// the case studies' other disc grids give +13 to +15 %, h 0.1 gives +9 %.
+// A correlation fitted to experiments against a coarse inviscid solution:
+// 20 % bounds these; a probe off by one sample on the line (0.19 R) does not fit.
+constexpr double kDiscM4StandoffTol = 0.2;
 }  // namespace
 
-TEST(HardCases, NearSonicDiscReachesSteadyOnASmallUniformGrid) {
+TEST(HardCases, BowShockProbeFindsTheDiscStandoffNearBillig) {
+  const scene::Scene s = scene::parse_scene(
+      "name: disc_M4\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\nmesh: {h_min: 0.2, "
+      "h_max: 0.2}\n");
+  const std::string d = cfd_test::scratch_dir();
+  const cfd::CaseResult r = run_on_uniform_grid(s, d);
+  EXPECT_TRUE(r.steady_state_reached);
+  const auto row = last_history_row(r.history_csv);
+  const double standoff = (-0.5 - row.at("shock_x")) / 0.5,
+               billig = scene::billig_standoff_cylinder(4.0);
+  RecordProperty("standoff_radii", std::to_string(standoff));
+  EXPECT_NEAR(standoff, billig, kDiscM4StandoffTol * billig) << "standoff " << standoff << " R";
+  // Steady means the shock held still too: within the gate's tolerance.
+  EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength * 0.5);
+}
+
+TEST(HardCases, NearSonicDiscRunsWithoutFallbackAndItsCreepingShockIsNotCalledSteady) {
   // Before: started at rest, the inflow's reflected shock ran out through the
   // inlet and the run died of a floating-point exception within half a
   // flow-through, fallback included; from the free stream with a
   // zeroGradient outflow, the bow shock drifted upstream without end. Now:
-  // free-stream start and a waveTransmissive far-field pressure, steady by
-  // the tolerances (not by the noise-floor rule) with no fallback.
+  // free-stream start and a waveTransmissive far-field pressure, no fallback.
+  // The density and force tolerances pass from ~6 flow-throughs on, but the
+  // bow shock still creeps upstream (0.16 radii per flow-through at 10,
+  // standoff 8.3 R against Billig's 6.1 R), so the drift gate holds the run
+  // to end_time, not steady. Pinned: a far-field model that settles the
+  // shock shows up here.
   const scene::Scene s = scene::parse_scene(
       "name: disc_M1_3\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\nmesh: {h_min: "
       "1.0, h_max: 1.0}\n");
   const std::string d = cfd_test::scratch_dir();
   const cfd::CaseResult r = run_on_uniform_grid(s, d);
-  EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_LT(r.final_density_change_l2, s.cfd.steady_tol);
-  EXPECT_LT(r.final_force_change, s.cfd.force_tol);
   EXPECT_EQ(r.fallback, "");
   EXPECT_EQ(r.start, "freestream");
   EXPECT_EQ(r.outflow, "subsonic");
+  EXPECT_LT(r.final_density_change_l2, s.cfd.steady_tol);
+  EXPECT_LT(r.final_force_change, s.cfd.force_tol);
+  EXPECT_FALSE(r.steady_state_reached);
+  const auto row = last_history_row(r.history_csv);
+  EXPECT_LT(row.at("shock_drift"), -cfd::kShockDriftPerLength * 0.5)
+      << "the shock no longer creeps upstream";
   const scene::Lattice lat = cfd::resample_to_lattice(s, d + "/case", 300, 60);
   expect_finite_positive(lat);
-  // Shock on the axis: the first lattice cell from the inflow whose density
-  // passes halfway to the normal-shock density.
+  // The probe's shock against the resampled field's: the first lattice cell
+  // from the inflow whose density passes halfway to the normal-shock density
+  // (the lattice's cells are 0.09 R, the grid's 2 R).
   const double rho_inf = 1.4,
                mid = 0.5 * rho_inf * (1.0 + scene::oblique_density_ratio(1.3, 0.5 * M_PI, 1.4));
   const auto& rho = lat.field("rho");
@@ -191,7 +247,6 @@ TEST(HardCases, NearSonicDiscReachesSteadyOnASmallUniformGrid) {
       x_shock = lat.xc(i);
       break;
     }
-  const double standoff = (-0.5 - x_shock) / 0.5, billig = scene::billig_standoff_cylinder(1.3);
-  RecordProperty("standoff_radii", std::to_string(standoff));
-  EXPECT_NEAR(standoff, billig, kNearSonicStandoffTol * billig) << "standoff " << standoff << " R";
+  RecordProperty("standoff_radii", std::to_string((-0.5 - row.at("shock_x")) / 0.5));
+  EXPECT_NEAR(row.at("shock_x"), x_shock, row.at("shock_cell"));
 }

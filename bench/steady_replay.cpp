@@ -5,12 +5,14 @@
 // shock's drift (least-squares slope over the gate's window) there; the
 // numbers of docs/reliability.md ("Bow shocks that drift").
 //
-//   steady_replay [--rows] [--csv OUTDIR] CASEDIR...
+//   steady_replay [--rows] [--csv OUTDIR] [--default-tolerances] CASEDIR...
 //
 // CASEDIR: a `cfd run` case (scene.yaml, history.csv, the time directories),
 // only read. --rows also prints each row's shock position and drift; --csv
 // writes the recomputed history (history.csv's columns, under the new rule)
-// to OUTDIR/<CASEDIR with '/' as '_'>.csv.
+// to OUTDIR/<CASEDIR with '/' as '_'>.csv; --default-tolerances judges
+// with the default steady_tol, force_tol, min_time and steady_checks instead
+// of the case's own (diagnostic runs that disabled the rule).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -72,8 +74,22 @@ std::string num(double v) {
   return std::isfinite(v) ? fmt::format("{:+.3g}", v) : "-";
 }
 
-void replay(const std::string& case_dir, bool print_rows, const std::string& csv_dir) {
-  const scene::Scene s = scene::load_scene(case_dir + "/scene.yaml");
+struct Options {
+  bool print_rows = false, default_tolerances = false;
+  std::string csv_dir;
+};
+
+void replay(const std::string& case_dir, const Options& o) {
+  scene::Scene s = scene::load_scene(case_dir + "/scene.yaml");
+  if (o.default_tolerances) {
+    const scene::CfdParams d;
+    s.cfd.steady_tol = d.steady_tol;
+    s.cfd.force_tol = d.force_tol;
+    s.cfd.min_time = d.min_time;
+    s.cfd.steady_checks = d.steady_checks;
+  }
+  const bool print_rows = o.print_rows;
+  const std::string& csv_dir = o.csv_dir;
   nlohmann::json sum;
   if (fs::exists(case_dir + "/summary.json")) std::ifstream(case_dir + "/summary.json") >> sum;
   const bool lts = sum.contains("local_time_stepping") && sum["local_time_stepping"].is_boolean() &&
@@ -119,6 +135,10 @@ void replay(const std::string& case_dir, bool print_rows, const std::string& csv
     }
     prev = std::move(snap);
   }
+  // How many cells the stagnation line crosses ahead of the nose (0: the
+  // line missed the grid, which would leave the gate blind).
+  const auto probe = cfd::ShockProbe::for_scene(s, reader.parts());
+  const std::size_t line_cells = probe ? probe->samples() : 0;
   const auto& rows = new_rule.rows();
   if (!csv_dir.empty()) {
     std::string name = case_dir;
@@ -139,10 +159,10 @@ void replay(const std::string& case_dir, bool print_rows, const std::string& csv
   const int last = static_cast<int>(rows.size()) - 1;
   const double standoff = (g.nose.x - rows.back().shock_x) / g.length;
   std::printf(
-      "%s | %ld cells | rows to %.1f (%s) | old stop %s, drift %s L/ft | new stop %s, drift %s "
+      "%s | %ld cells (%zu on the stagnation line) | rows to %.1f (%s) | old stop %s, drift %s L/ft | new stop %s, drift %s "
       "L/ft | last drift "
       "%s L/ft, cell %s L | standoff %s L | recorded steady %s | new why: %s\n",
-      case_dir.c_str(), reader.cells(), ftk(rows.back()), ended.c_str(),
+      case_dir.c_str(), reader.cells(), line_cells, ftk(rows.back()), ended.c_str(),
       ft(at(old_at, ftk)).c_str(), num(at(old_at, drift)).c_str(), ft(at(new_at, ftk)).c_str(),
       num(at(new_at, drift)).c_str(), num(at(last, drift)).c_str(),
       num(rows.back().shock_cell / g.length).c_str(), num(standoff).c_str(),
@@ -155,20 +175,23 @@ void replay(const std::string& case_dir, bool print_rows, const std::string& csv
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool print_rows = false;
-  std::string csv_dir;
+  Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--rows") {
-      print_rows = true;
+      o.print_rows = true;
+      continue;
+    }
+    if (a == "--default-tolerances") {
+      o.default_tolerances = true;
       continue;
     }
     if (a == "--csv" && i + 1 < argc) {
-      csv_dir = argv[++i];
+      o.csv_dir = argv[++i];
       continue;
     }
     try {
-      replay(a, print_rows, csv_dir);
+      replay(a, o);
     } catch (const std::exception& e) {
       std::printf("%s: %s\n", a.c_str(), e.what());
     }

@@ -85,11 +85,12 @@ double SteadyState::progress(const HistoryRow& row) const {
 // kShockDriftSignificance standard errors (from the residuals about the
 // fitted line) from zero. The second clause makes a shock flickering back and
 // forth by a cell steady: its fitted slope is small against its scatter. The
-// numbers, from recorded runs (docs/reliability.md): converged blunt bodies
-// (Apollo M5, M10; discs M4, M8) drift at most 0.0105 body lengths per
-// flow-through, drifting ones (the M2/30 wedge, the M1.3 disc) at least
-// 0.014; the residuals about the fitted line are at most 0.2 cells, so the
-// drifts are significant (10 to 70 standard errors).
+// numbers, from recorded runs replayed (docs/reliability.md): at the old
+// rule's stop, converged blunt bodies (Apollo M5, M10; discs M4, M8) drift at
+// most 0.0105 body lengths per flow-through (the discs' still falling: two M4
+// grids run a check or two longer), drifting ones (the M2/30 wedge, the M1.3
+// disc) at least 0.014; the scatter about the fitted line is at most 0.18
+// cells, so those drifts are 11 to 69 standard errors.
 SteadyState::ShockGate SteadyState::shock_gate() {
   if (!(c_.shock_drift_tol > 0)) return {};
   const std::size_t n = kShockDriftRows;

@@ -159,9 +159,9 @@ void replay(const std::string& case_dir, const Options& o) {
   const int last = static_cast<int>(rows.size()) - 1;
   const double standoff = (g.nose.x - rows.back().shock_x) / g.length;
   std::printf(
-      "%s | %ld cells (%zu on the stagnation line) | rows to %.1f (%s) | old stop %s, drift %s L/ft | new stop %s, drift %s "
-      "L/ft | last drift "
-      "%s L/ft, cell %s L | standoff %s L | recorded steady %s | new why: %s\n",
+      "%s | %ld cells (%zu on the stagnation line) | rows to %.1f (%s) | old stop %s, drift %s "
+      "L/ft | new stop %s, drift %s L/ft | last drift %s L/ft, cell %s L | standoff %s L | "
+      "recorded steady %s | new why: %s\n",
       case_dir.c_str(), reader.cells(), line_cells, ftk(rows.back()), ended.c_str(),
       ft(at(old_at, ftk)).c_str(), num(at(old_at, drift)).c_str(), ft(at(new_at, ftk)).c_str(),
       num(at(new_at, drift)).c_str(), num(at(last, drift)).c_str(),

@@ -1,11 +1,11 @@
 #include "case_monitor.hpp"
 
-#include <fmt/format.h>
-
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "foam_process.hpp"
 #include "scene/body_traits.hpp"
@@ -27,8 +27,7 @@ constexpr double kWallWindowEnd = 0.9;
 constexpr double kTinyForce = 1e-300;
 }  // namespace
 
-CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int np)
-    : case_dir_(case_dir) {
+CaseReader::CaseReader(const scene::Scene& s, const std::string& case_dir, int np) : case_dir_(case_dir) {
   if (np > 1) {
     for (int k = 0; k < np; ++k) part_dirs_.push_back(case_dir + "/processor" + std::to_string(k));
   } else {
@@ -67,9 +66,8 @@ Snapshot CaseReader::read(const TimeDir& t) const {
     const auto p = read_scalar_field(dir + "/p", m.cells());
     for (std::size_t c = 0; c < m.cells(); ++c) {
       if (!(std::isfinite(rho[c]) && std::isfinite(p[c]) && rho[c] > 0 && p[c] > 0))
-        throw NonPhysicalState(
-            fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
-                        rho[c], p[c], c, t.name, dir));
+        throw NonPhysicalState(fmt::format("the solution diverged: rho = {}, p = {} in cell {} at time {} ({})",
+                                          rho[c], p[c], c, t.name, dir));
     }
     s.rho.insert(s.rho.end(), rho.begin(), rho.end());
     for (const WallFace& f : m.body) {
@@ -117,17 +115,16 @@ HistoryRow compare(const Snapshot& prev, const Snapshot& cur, const std::vector<
   return r;
 }
 
-void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows,
-                   double steady_tol, double force_tol, bool plot) {
+void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows, double steady_tol,
+                   double force_tol, bool plot) {
   // The shock columns come last, so readers of the older columns by
   // position keep working; a value not measured is an empty field.
   const auto opt = [](double v) {
     return std::isfinite(v) ? fmt::format("{:.8g}", v) : std::string();
   };
   std::ostringstream o;
-  o << "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,wall_"
-       "pressure_ratio,"
-       "shock_x,dshock,shock_drift,shock_cell\n";
+  o << "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,"
+       "wall_pressure_ratio,shock_x,dshock,shock_drift,shock_cell\n";
   for (const HistoryRow& r : rows)
     o << fmt::format(
         "{:.10g},{:.6g},{:.4f},{},{:.6e},{:.6e},{:.6e},{:.10g},{:.10g},{:.10g},{},{},{},{}\n",

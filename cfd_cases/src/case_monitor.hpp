@@ -17,10 +17,11 @@ namespace cfd {
 struct Snapshot {
   double time = 0.0;
   std::string name;
-  std::vector<double> rho;                       // all parts, concatenated
-  scene::Vec2 force;                             // pressure force on the body per unit depth
-  double wall_pressure_ratio = 0.0;              // NaN unless a wedge
-  ShockReading shock{scene::kNaN, scene::kNaN};  // NaN unless measured (ShockProbe)
+  std::vector<double> rho;  // all parts, concatenated
+  scene::Vec2 force;        // pressure force on the body per unit depth
+  double wall_pressure_ratio = 0.0;  // NaN unless a wedge
+  // The bow shock on the stagnation line; NaN unless measured (ShockProbe).
+  ShockReading shock{scene::kNaN, scene::kNaN};
 };
 
 struct HistoryRow {
@@ -70,7 +71,7 @@ HistoryRow compare(const Snapshot& prev, const Snapshot& cur, const std::vector<
                    double rho_inf, double flow_through);
 
 // history.csv and, with gnuplot, history.png next to it.
-void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows,
-                   double steady_tol, double force_tol, bool plot);
+void write_history(const std::string& case_dir, const std::vector<HistoryRow>& rows, double steady_tol,
+                   double force_tol, bool plot);
 
 }  // namespace cfd

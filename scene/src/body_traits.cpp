@@ -167,8 +167,7 @@ bool outflow_can_be_subsonic(const Scene& s) {
   // wedge: Mach 0.35-0.57 over the whole outflow).
   // Body and domain compute the station each their own way: equal to round-off.
   constexpr double kOnBoundary = 1e-9;
-  return stations(make_body(*s.body)).x_widest >=
-         scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
+  return stations(make_body(*s.body)).x_widest >= scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
 }
 
 }  // namespace scene

@@ -43,8 +43,7 @@ void expect_finite_positive(const scene::Lattice& lat) {
 
 // The Apollo capsule impulsively started at Mach 5, on a coarse uniform
 // meshgen grid (h = 0.05 D) written to mesh_dir; `cfd` is the scene's cfd section.
-constexpr const char* kApolloM5 =
-    "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
+constexpr const char* kApolloM5 = "name: apollo\nbody: {kind: apollo, diameter: 1.0}\nfreestream: {mach: 5}\n";
 scene::Scene apollo_on_coarse_grid(const std::string& mesh_dir, const std::string& cfd) {
   const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: " + cfd + "\n");
   meshgen::MeshRequest req;
@@ -61,8 +60,7 @@ TEST(HardCases, Mach8WedgeStaysStable) {
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 5000, d + "/mesh");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
-  const double exact =
-      scene::oblique_pressure_ratio(8.0, *scene::oblique_shock_beta(8.0, 15 * kDeg, 1.4), 1.4);
+  const double exact = scene::oblique_pressure_ratio(8.0, *scene::oblique_shock_beta(8.0, 15 * kDeg, 1.4), 1.4);
   EXPECT_NEAR(r.wall_pressure_ratio, exact, kMach8WallTol * exact);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 60));
 }
@@ -85,8 +83,7 @@ TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
       EXPECT_TRUE(std::filesystem::exists(d + "/kurganov/log.rhoCentralFoam"));  // case kept
     }
   }
-  const scene::Scene s =
-      scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
+  const scene::Scene s = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, flux_scheme: Tadmor}\n");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/tadmor", {});
   EXPECT_GT(r.steps, 0);
   EXPECT_GT(r.sim_time, 0.0);
@@ -98,8 +95,7 @@ TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
   const std::string d = cfd_test::scratch_dir();
   cfd::make_wedge_block_mesh(s, 5000, d + "/mesh", kSkewGrading);
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
-  const double exact =
-      scene::oblique_pressure_ratio(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 1.4);
+  const double exact = scene::oblique_pressure_ratio(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 1.4);
   EXPECT_TRUE(r.steady_state_reached);
   EXPECT_NEAR(r.wall_pressure_ratio, exact, kSkewedWallTol * exact);
 }
@@ -115,18 +111,15 @@ TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
   const std::string d = cfd_test::scratch_dir();
   const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
   const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
-  EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos)
-      << r.fallback;
+  EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos) << r.fallback;
   EXPECT_NE(r.fallback.find("diverged"), std::string::npos) << r.fallback;
   EXPECT_GT(r.sim_time, 0.0);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
   const std::string summary = scene::read_file(d + "/case/summary.json");
   EXPECT_NE(summary.find("\"fallback\": \"flux_scheme Tadmor"), std::string::npos) << summary;
 
-  const scene::Scene strict =
-      scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
-  EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}),
-               cfd::Diverged);
+  const scene::Scene strict = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
+  EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}), cfd::Diverged);
 }
 
 TEST(HardCases, RobustSettingsAreTadmorMinmodAndHalfTheCourantNumber) {
@@ -156,13 +149,11 @@ TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
   // this grid (docs/reliability.md); the fallback must carry it to a
   // measured steady state with finite, positive fields.
   const scene::Scene s = scene::parse_scene(
-      "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, "
-      "h_max: 0.2}\n");
+      "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, h_max: 0.2}\n");
   const std::string d = cfd_test::scratch_dir();
   const cfd::CaseResult r = run_on_uniform_grid(s, d);
   EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos)
-      << "the default start no longer diverges: " << r.fallback;
+  EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos) << "the default start no longer diverges: " << r.fallback;
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "case_setup.hpp"
@@ -47,8 +48,7 @@ void expect_cpu_summary(const cfd::CaseResult& r) {
 }
 
 double exact_ratio(double mach, double deg) {
-  return scene::oblique_pressure_ratio(mach, *scene::oblique_shock_beta(mach, deg * kDeg, 1.4),
-                                       1.4);
+  return scene::oblique_pressure_ratio(mach, *scene::oblique_shock_beta(mach, deg * kDeg, 1.4), 1.4);
 }
 
 TEST(Case, InstantiationFollowsTheScene) {
@@ -59,9 +59,8 @@ TEST(Case, InstantiationFollowsTheScene) {
   cfd::make_wedge_block_mesh(s, 2000, d + "/mesh");
   const cfd::CaseResult r = cfd::run_case(s, d + "/mesh", d + "/case", {});
   const std::string c = d + "/case";
-  for (const char* f :
-       {"0.orig/U", "0/U", "constant/polyMesh/faces", "constant/thermophysicalProperties",
-        "system/controlDict", "log.rhoCentralFoam", "history.csv", "summary.json", "scene.yaml"})
+  for (const char* f : {"0.orig/U", "0/U", "constant/polyMesh/faces", "constant/thermophysicalProperties",
+                        "system/controlDict", "log.rhoCentralFoam", "history.csv", "summary.json", "scene.yaml"})
     EXPECT_TRUE(fs::exists(c + "/" + f)) << f;
   EXPECT_TRUE((fs::status(c + "/Allrun").permissions() & fs::perms::owner_exec) != fs::perms::none);
   const std::string control = scene::read_file(c + "/system/controlDict");
@@ -102,9 +101,8 @@ TEST(Case, SteadyStateIsDetectedAndTheRunStopped) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line,
-            "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,wall_"
-            "pressure_ratio,"
-            "shock_x,dshock,shock_drift,shock_cell");
+            "time,flow_throughs,wall_seconds,steps,drho_l2,drho_max,dforce,force_x,force_y,"
+            "wall_pressure_ratio,shock_x,dshock,shock_drift,shock_cell");
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
@@ -121,10 +119,7 @@ TEST(Case, SteadyStateIsDetectedAndTheRunStopped) {
   EXPECT_EQ(inside, 1.0);
   EXPECT_FALSE(lat.sample("rho", 0.8, 0.05, v));
   ASSERT_TRUE(lat.sample("mach", 0.8, 0.2, v));
-  EXPECT_NEAR(v,
-              scene::oblique_downstream_mach(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4),
-                                             10 * kDeg, 1.4),
-              0.05);
+  EXPECT_NEAR(v, scene::oblique_downstream_mach(3.0, *scene::oblique_shock_beta(3.0, 10 * kDeg, 1.4), 10 * kDeg, 1.4), 0.05);
 }
 
 // One serial and one 2-rank run of the same case: the same fields, and each
@@ -149,8 +144,7 @@ TEST(Case, ParallelEqualsSerialAndBothReportTheirCpu) {
     const auto a = cfd::read_scalar_field(d + "/serial/" + t + "/" + f, n);
     const auto b = cfd::read_scalar_field(d + "/parallel/" + t + "/" + f, n);
     double worst = 0;
-    for (std::size_t k = 0; k < n; ++k)
-      worst = std::max(worst, std::abs(a[k] - b[k]) / std::abs(a[k]));
+    for (std::size_t k = 0; k < n; ++k) worst = std::max(worst, std::abs(a[k] - b[k]) / std::abs(a[k]));
     EXPECT_LT(worst, kParallelTol) << f;
   }
   EXPECT_NEAR(serial.wall_pressure_ratio, par.wall_pressure_ratio, kParallelTol);
@@ -191,8 +185,7 @@ TEST(Case, LocalTimeSteppingReachesTheSameState) {
   EXPECT_NE(scene::read_file(d + "/lts/log.rhoCentralFoam").find("Using LTS"), std::string::npos);
   EXPECT_TRUE(euler.steady_state_reached);
   EXPECT_TRUE(lts.steady_state_reached);
-  EXPECT_NEAR(lts.wall_pressure_ratio, euler.wall_pressure_ratio,
-              kLtsTol * euler.wall_pressure_ratio);
+  EXPECT_NEAR(lts.wall_pressure_ratio, euler.wall_pressure_ratio, kLtsTol * euler.wall_pressure_ratio);
 }
 
 TEST(Case, ForeignPatchNameIsInputError) {
@@ -206,9 +199,8 @@ TEST(Case, ForeignPatchNameIsInputError) {
     (void)cfd::run_case(s, d + "/mesh", d + "/case", {});
     FAIL() << "expected InputError";
   } catch (const scene::InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              d + "/mesh/constant/polyMesh/boundary: patch 'farField' is not one of inlet, "
-                  "outlet, top, bottom, body (or an empty/symmetryPlane patch)");
+    EXPECT_EQ(std::string(e.what()), d + "/mesh/constant/polyMesh/boundary: patch 'farField' is not one of inlet, "
+                                         "outlet, top, bottom, body (or an empty/symmetryPlane patch)");
   }
 }
 

@@ -56,6 +56,30 @@ TEST(ShockProbe, FindsTheRiseThroughTheMidpointBetweenCells) {
   EXPECT_NEAR(probe->measure(rho).x, -0.95 - kCell / 3.0, 1e-12);
 }
 
+TEST(ShockProbe, ReadsTheProcessorPartsOfADecomposedCase) {
+  // The strip's cells dealt alternately to two parts, as processor0 and
+  // processor1: the line's cells lie in both, and the reading from their
+  // concatenated fields is the whole strip's.
+  const cfd::Mesh2D whole = strip();
+  cfd::Mesh2D parts[2];
+  std::vector<std::size_t> order[2];
+  for (std::size_t c = 0; c < whole.cells(); ++c) {
+    cfd::Mesh2D& part = parts[c % 2];
+    part.cell_polygons.push_back(whole.cell_polygons[c]);
+    part.cell_area.push_back(whole.cell_area[c]);
+    part.cell_centre.push_back(whole.cell_centre[c]);
+    order[c % 2].push_back(c);
+  }
+  const auto probe = cfd::ShockProbe::for_scene(disc(), {parts[0], parts[1]});
+  ASSERT_TRUE(probe.has_value());
+  EXPECT_EQ(probe->samples(), 15u);
+  const double rho2 = kRhoInf * scene::oblique_density_ratio(kMach, 0.5 * M_PI, 1.4);
+  std::vector<double> rho;  // part 0's cells, then part 1's
+  for (const auto& o : order)
+    for (const std::size_t c : o) rho.push_back(c % 15 < 12 ? kRhoInf : rho2);
+  EXPECT_NEAR(probe->measure(rho).x, -0.8, 1e-12);
+}
+
 TEST(ShockProbe, NoRiseIsNotMeasured) {
   const auto probe = cfd::ShockProbe::for_scene(disc(), {strip()});
   ASSERT_TRUE(probe.has_value());

@@ -1,5 +1,7 @@
 // Progress and log lines: plain lines off a terminal, silence in CI, and
 // Ctrl-C handling of the shared CLI plumbing.
+#include "scene/progress.hpp"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,7 +14,6 @@
 
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
-#include "scene/progress.hpp"
 
 namespace {
 
@@ -20,8 +21,9 @@ namespace {
 template <class F>
 std::string capture_stderr(F body) {
   // One file per test process: ctest runs tests in parallel.
-  const auto path =
-      (std::filesystem::temp_directory_path() / ("progress_capture_" + std::to_string(::getpid()) + ".txt")).string();
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("progress_capture_" + std::to_string(::getpid()) + ".txt"))
+                        .string();
   std::fflush(stderr);
   const int saved = ::dup(2);
   std::FILE* f = std::fopen(path.c_str(), "w");
@@ -68,10 +70,14 @@ TEST(Progress, QuietInCi) {
 TEST(Cli, ExitCodesFollowTheContract) {
   const auto quiet = [](auto f) { return capture_stderr(f); };
   int rc = -1;
-  const auto msg = quiet([&] { rc = scene::run_guarded("tool", [] () -> int { throw scene::InputError("scene.yaml:3: key 'x': bad"); }); });
+  const auto msg = quiet([&] {
+    rc = scene::run_guarded("tool",
+                            []() -> int { throw scene::InputError("scene.yaml:3: key 'x': bad"); });
+  });
   EXPECT_EQ(rc, 2);
   EXPECT_EQ(msg, "tool: error: scene.yaml:3: key 'x': bad\n");
-  quiet([&] { rc = scene::run_guarded("tool", [] () -> int { throw scene::RunError("diverged"); }); });
+  quiet(
+      [&] { rc = scene::run_guarded("tool", []() -> int { throw scene::RunError("diverged"); }); });
   EXPECT_EQ(rc, 1);
   EXPECT_EQ(scene::run_guarded("tool", [] { return 0; }), 0);
 }
@@ -84,4 +90,19 @@ TEST(Cli, FirstInterruptSetsTheFlag) {
   EXPECT_TRUE(scene::interrupted());
   scene::clear_interrupt();
   std::signal(SIGINT, SIG_DFL);
+}
+
+// A process stuck where nothing polls the flag (here: asleep) is stopped by
+// the watchdog one grace period after the first signal, with one line and
+// the interrupt's exit code; without the watchdog it would sleep on and exit 0.
+TEST(Cli, WatchdogStopsAProcessThatIgnoresTheFirstInterrupt) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        scene::install_interrupt_handler(1);
+        std::raise(SIGINT);
+        for (int i = 0; i < 30; ++i) ::sleep(1);  // a sleep interrupted by the alarm resumes
+        std::_Exit(0);
+      },
+      ::testing::ExitedWithCode(130), "did not stop within its grace period");
 }

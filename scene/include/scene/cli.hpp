@@ -5,8 +5,12 @@
 
 namespace scene {
 
-// SIGINT sets a flag that long loops poll; a second SIGINT aborts at once.
-void install_interrupt_handler();
+// SIGINT (or SIGTERM) sets a flag that long loops poll; a second one aborts
+// at once. A process that has not stopped `grace_seconds` after the first
+// (stuck in a call that polls nothing) is stopped by a watchdog with one
+// line on stderr and exit code 130; whatever it had staged stays where it is.
+constexpr unsigned kInterruptGraceSeconds = 30;
+void install_interrupt_handler(unsigned grace_seconds = kInterruptGraceSeconds);
 bool interrupted();
 void clear_interrupt();  // tests
 

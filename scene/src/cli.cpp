@@ -54,9 +54,6 @@ void clear_interrupt() {
   alarm(0);
 }
 
-namespace {
-// The contract's one line: a file name or YAML value holding a newline (or
-// other control character) must not split the message.
 std::string one_line(const std::string& msg) {
   std::string out;
   out.reserve(msg.size());
@@ -70,7 +67,6 @@ std::string one_line(const std::string& msg) {
   }
   return out;
 }
-}  // namespace
 
 int run_guarded(const std::string& program, const std::function<int()>& body) {
   try {

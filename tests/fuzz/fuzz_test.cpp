@@ -28,6 +28,7 @@
 
 #include "mutators.hpp"
 #include "run_capture.hpp"
+#include "scene/cli.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 
@@ -96,21 +97,6 @@ struct Tally {
   std::vector<std::string> failures;
 };
 
-// A path as run_guarded prints it: newline as \\n, other control
-// characters as '?'.
-std::string as_in_message(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    if (c == '\n')
-      out += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-      out += '?';
-    else
-      out += c;
-  }
-  return out;
-}
-
 // Files a run must never leave behind (atomic writes, staging folders).
 bool is_temporary(const std::string& name) {
   return name.find(".tmp.") != std::string::npos || name.find(".staging-") != std::string::npos ||
@@ -148,7 +134,7 @@ void judge(Tally& t, const fuzz::Outcome& o, const std::vector<std::string>& arg
           o.err.find("usage error") != std::string::npos || o.err.find("--") != std::string::npos;
       for (std::size_t a = 1; a < argv.size() && !names; ++a)
         names = argv[a].size() > 1 && (o.err.find(argv[a]) != std::string::npos ||
-                                       o.err.find(as_in_message(argv[a])) != std::string::npos);
+                                       o.err.find(scene::one_line(argv[a])) != std::string::npos);
       if (!one_line || !names) {
         ++t.bad_messages;
         problem =

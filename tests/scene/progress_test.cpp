@@ -82,6 +82,10 @@ TEST(Cli, ExitCodesFollowTheContract) {
   EXPECT_EQ(scene::run_guarded("tool", [] { return 0; }), 0);
 }
 
+TEST(Cli, OneLineEscapesWhatWouldSplitTheMessage) {
+  EXPECT_EQ(scene::one_line("scene\nname\twith\x7f"), "scene\\nname?with?");
+}
+
 TEST(Cli, FirstInterruptSetsTheFlag) {
   scene::install_interrupt_handler();
   scene::clear_interrupt();

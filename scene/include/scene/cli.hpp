@@ -14,6 +14,10 @@ void install_interrupt_handler(unsigned grace_seconds = kInterruptGraceSeconds);
 bool interrupted();
 void clear_interrupt();  // tests
 
+// The contract's one line: a newline becomes "\\n" and other control
+// characters '?', so a file name or YAML value cannot split the message.
+std::string one_line(const std::string& msg);
+
 // Runs `body`, turning exceptions into one "PROGRAM: error: ..." line on
 // stderr and the contract's exit codes (InputError 2, RunError 1, other 1).
 int run_guarded(const std::string& program, const std::function<int()>& body);

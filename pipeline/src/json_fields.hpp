@@ -2,10 +2,9 @@
 // Reading numbers back from the stages' summaries and writing them into
 // tables: one rule for "missing" (NaN, shown as n/a) across the pipeline.
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/units.hpp"
 
@@ -18,7 +17,9 @@ inline double number_or_nan(const nlohmann::json& j, const char* key) {
 }
 
 // v, or null when it is not finite (JSON has no NaN).
-inline nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+inline nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 // `prec` significant digits; "n/a" for what is not finite.
 inline std::string format_number(double v, int prec = 3) {
@@ -34,8 +35,9 @@ inline std::string format_number(double v, int prec = 3) {
 inline std::string speedup_text(const nlohmann::json& i) {
   const double v = number_or_nan(i, "value");
   if (!std::isfinite(v)) return "n/a";
-  const std::string hi =
-      i.contains("ci_high") && i["ci_high"].is_null() ? "inf" : format_number(number_or_nan(i, "ci_high"));
+  const std::string hi = i.contains("ci_high") && i["ci_high"].is_null()
+                             ? "inf"
+                             : format_number(number_or_nan(i, "ci_high"));
   return format_number(v) + "x (" + format_number(number_or_nan(i, "ci_low")) + "-" + hi + ")";
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "json_fields.hpp"
 #include "scene/body.hpp"
 #include "scene/units.hpp"
 
@@ -48,14 +49,11 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
     m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
                  : r.shock == scene::ShockKind::detached ? "standoff"
                                                          : "none";
-    auto num = [](double v) {
-      return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-    };
     m.details = {{"shock", scene::to_string(r.shock)},
-                 {"shock_angle_deg", num(r.shock_angle_deg)},
-                 {"shock_angle_ci_deg", num(r.shock_angle_ci_deg)},
-                 {"standoff", num(r.standoff)},
-                 {"standoff_ci", num(r.standoff_ci)}};
+                 {"shock_angle_deg", json_number(r.shock_angle_deg)},
+                 {"shock_angle_ci_deg", json_number(r.shock_angle_ci_deg)},
+                 {"standoff", json_number(r.standoff)},
+                 {"standoff_ci", json_number(r.standoff_ci)}};
     return m;
   };
   return goal;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "json_fields.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/shock_csv.hpp"
@@ -9,16 +10,13 @@
 namespace pipeline {
 
 nlohmann::json Prediction::summary() const {
-  auto num = [](double v) {
-    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-  };
   nlohmann::json j;
   j["predictor"] = predictor;
   j["shock"] = scene::to_string(kind);
-  j["shock_angle_deg"] = num(shock_angle_deg);
-  j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
-  j["standoff"] = num(standoff);
-  j["standoff_ci"] = num(standoff_ci);
+  j["shock_angle_deg"] = json_number(shock_angle_deg);
+  j["shock_angle_ci_deg"] = json_number(shock_angle_ci_deg);
+  j["standoff"] = json_number(standoff);
+  j["standoff_ci"] = json_number(standoff_ci);
   j["cpu_seconds"] = cpu_seconds;
   j["wall_seconds"] = wall_seconds;
   j["shock_points"] = static_cast<long>(curve.size());
@@ -72,8 +70,8 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {
   // Two-sided 95% point of the normal distribution.
   constexpr double kZ95 = 1.96;
-  const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
   if (!std::isfinite(calibration_scatter_deg)) return angle_ci_deg;
+  const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
   return std::hypot(own, kZ95 * calibration_scatter_deg);
 }
 

@@ -76,9 +76,8 @@ const GridRun* at_level(const std::vector<GridRun>& fam, double level) {
 }
 
 nlohmann::json convergence_json(const GridConvergence& g) {
-  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-  return {{"monotone", g.monotone}, {"observed_order", num(g.order)}, {"extrapolated", num(g.extrapolated)},
-          {"gci_fine", num(g.gci_fine)}, {"note", g.note}};
+  return {{"monotone", g.monotone}, {"observed_order", json_number(g.order)}, {"extrapolated", json_number(g.extrapolated)},
+          {"gci_fine", json_number(g.gci_fine)}, {"note", g.note}};
 }
 
 // Bodies without an exact field solution: one uniform grid finer than every
@@ -141,9 +140,7 @@ std::string clustered_family(const std::string& predictor) {
 
 std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
 
-namespace {
-
-AppliedCalibration calibrate_scene(scene::Scene& s, const std::string& table_path) {
+AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return {};
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
@@ -164,12 +161,6 @@ AppliedCalibration calibrate_scene(scene::Scene& s, const std::string& table_pat
                           : " (by Mach number alone: the table is calibrated on wedges, so this is "
                             "an extrapolation)");
   return {buf, t.cpu_seconds, scatter};
-}
-
-}  // namespace
-
-AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
-  return calibrate_scene(s, table_path);
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 
+#include "json_fields.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/units.hpp"
 
@@ -166,8 +167,7 @@ void charge_calibration(Verdict& v, const std::vector<VerdictRun>& clustered, co
 }
 
 nlohmann::json interval_json(const Interval& i) {
-  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-  return {{"value", num(i.value)}, {"ci_low", num(i.ci_low)}, {"ci_high", num(i.ci_high)}};
+  return {{"value", json_number(i.value)}, {"ci_low", json_number(i.ci_low)}, {"ci_high", json_number(i.ci_high)}};
 }
 
 double verdict_cfd_cpu(const Verdict& v, long cells, long steps, double measured) {
@@ -213,7 +213,7 @@ nlohmann::json verdict_json(const Verdict& v) {
   };
   return {{"primary_error", v.primary.name},
           {"primary_error_reference", v.primary.reference},
-          {"target_error", std::isfinite(v.target_error) ? nlohmann::json(v.target_error) : nlohmann::json(nullptr)},
+          {"target_error", json_number(v.target_error)},
           {"extrapolated", v.extrapolated},
           {"speedup_cfd", interval_json(v.speedup_cfd)},
           {"speedup_total", interval_json(v.speedup_total)},

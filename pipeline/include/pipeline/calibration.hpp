@@ -42,12 +42,6 @@ CalibrationTable read_calibration(
     const std::string& path);  // InputError (file and key) if malformed
 // Coefficients are written to 17 significant digits (they round-trip exactly).
 void write_calibration(const CalibrationTable& t, const std::string& path);
-// The restitution for a body at (mach, angle_deg). A fitted table evaluates
-// its model, clamped to e <= 1; a NaN angle (blunt bodies) takes the
-// Mach-only model, an extrapolation from wedges. An old table interpolates
-// by inverse distance in (Mach, angle) scaled by (1, 5 deg) (an exact match
-// returns its entry's e; a NaN angle weighs the entries by Mach alone).
-// nullopt for an empty table.
 // The RMS of the out-of-sample angle errors (granular_angle_deg -
 // gas_angle_deg, each measured at its leave-one-out restitution) over the
 // entries that have one: how far a prediction from this table misses the gas
@@ -55,6 +49,12 @@ void write_calibration(const CalibrationTable& t, const std::string& path);
 // in sample) or fewer than two such entries.
 double out_of_sample_angle_rms_deg(const CalibrationTable& t);
 
+// The restitution for a body at (mach, angle_deg). A fitted table evaluates
+// its model, clamped to e <= 1; a NaN angle (blunt bodies) takes the
+// Mach-only model, an extrapolation from wedges. An old table interpolates
+// by inverse distance in (Mach, angle) scaled by (1, 5 deg) (an exact match
+// returns its entry's e; a NaN angle weighs the entries by Mach alone).
+// nullopt for an empty table.
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
                                               double angle_deg);
 

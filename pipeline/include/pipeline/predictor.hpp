@@ -48,8 +48,8 @@ struct Prediction {
 struct PredictContext {
   const scene::Scene& scene;
   std::string out_dir;  // the predictor's own directory (cached stages live below it)
-  std::string
-      run_dir;  // the pipeline run's directory: CFD grids shared with the families live there
+  // The pipeline run's directory: CFD grids shared with the families live there.
+  std::string run_dir;
   int np = 1;
   bool force = false;  // recompute cached stages
   // The calibration table's out-of-sample scatter of the granular shock

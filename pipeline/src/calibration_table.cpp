@@ -118,6 +118,17 @@ CalibrationTable read_calibration(const std::string& path) {
     } else if (!t.fits.empty()) {
       bad(path, root["fits"], "model", "fits given but no chosen model");
     }
+    if (const auto b = root["bow_shock"]) {
+      if (!b.IsMap() || !b["relative_rms"])
+        bad(path, b, "bow_shock", "expected a map {relative_rms, bodies, stations}");
+      BowShockScatter w;
+      w.relative_rms = b["relative_rms"].as<double>();
+      if (!(std::isfinite(w.relative_rms) && w.relative_rms >= 0))
+        bad(path, b["relative_rms"], "bow_shock.relative_rms", "expected a finite number >= 0");
+      if (const auto names = b["bodies"]) w.bodies = names.as<std::vector<std::string>>();
+      w.stations = b["stations"] ? b["stations"].as<int>() : 0;
+      t.bow_shock = w;
+    }
     if (const auto tp = root["training_points"]) {
       if (!tp.IsSequence() || tp.size() != t.entries.size())
         bad(path, tp, "training_points", "expected one [mach, angle_deg] per entry");
@@ -160,6 +171,13 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
       e << YAML::Flow << YAML::BeginSeq << c.mach << c.angle_deg << YAML::EndSeq;
     e << YAML::EndSeq;
   }
+  if (t.bow_shock) {
+    e.SetDoublePrecision(kCoefficientDigits);
+    e << YAML::Key << "bow_shock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "relative_rms"
+      << YAML::Value << t.bow_shock->relative_rms << YAML::Key << "bodies" << YAML::Value << YAML::Flow
+      << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value << t.bow_shock->stations << YAML::EndMap;
+    e.SetDoublePrecision(kEntryDigits);
+  }
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;
   for (const auto& c : t.entries) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "mach" << YAML::Value << c.mach << YAML::Key
@@ -179,6 +197,8 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# theta-beta-Mach angle. `pipeline run` evaluates `model` (blunt bodies: the\n"
             "# inverse_mach2 fit); entries are the training points (crossing e, 95% half-width),\n"
             "# granular_angle_deg measured at loo_restitution, the leave-one-out prediction.\n"
+            "# bow_shock (if present): the granular bow shock's out-of-sample relative error under\n"
+            "# this e(M), from `pipeline calibrate --bow-shock-runs`; it widens bow-shock bands.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "pipeline/bow_shock_scatter.hpp"
 #include "pipeline/cost_estimate.hpp"
 #include "pipeline/league.hpp"
 #include "pipeline/parametric.hpp"
@@ -102,6 +103,11 @@ int main(int argc, char** argv) {
     calib->add_option("--from-points", from_points,
                       "fit from measured crossings instead of running (pipeline parametric's "
                       "parametric_calibration.json); --out is then not needed");
+    std::vector<std::string> bow_runs;
+    calib->add_option("--bow-shock-runs", bow_runs,
+                      "finished `pipeline run` directories of blunt training bodies (no case study): "
+                      "measure the granular bow shock's out-of-sample scatter under the table's e(M) "
+                      "and write it into the table; runs nothing, --out not needed");
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,
@@ -185,6 +191,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (calib->parsed()) {
+      if (!bow_runs.empty()) {
+        std::cout << pipeline::calibrate_bow_shocks(bow_runs, co.table_path).dump(2) << "\n";
+        return 0;
+      }
       if (!from_points.empty()) {
         std::cout << pipeline::calibrate_from_points(from_points, co.table_path).dump(2) << "\n";
         return 0;

@@ -9,6 +9,11 @@
 
 namespace pipeline {
 
+namespace {
+// Two-sided 95% point of the normal distribution.
+constexpr double kZ95 = 1.96;
+}  // namespace
+
 nlohmann::json Prediction::summary() const {
   nlohmann::json j;
   j["predictor"] = predictor;
@@ -68,11 +73,15 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
 }
 
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {
-  // Two-sided 95% point of the normal distribution.
-  constexpr double kZ95 = 1.96;
   if (!std::isfinite(calibration_scatter_deg)) return angle_ci_deg;
   const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
   return std::hypot(own, kZ95 * calibration_scatter_deg);
+}
+
+double band_bow_half_width(double ci, double distance, double relative_rms) {
+  const double own = std::isfinite(ci) ? ci : 0.0;
+  if (!std::isfinite(relative_rms) || !std::isfinite(distance)) return own;
+  return std::hypot(own, kZ95 * relative_rms * distance);
 }
 
 std::vector<ShockPoint> read_accepted_shock(const std::string& path) {

@@ -152,15 +152,17 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
-  // The wedge table's angle scatter says nothing about a bow shock's standoff.
+  // The wedge table's angle scatter says nothing about a bow shock's standoff;
+  // the table's bow-shock block, measured on blunt bodies, does.
   const double scatter = angle_deg ? out_of_sample_angle_rms_deg(t) : kNaN;
+  const double bow = !angle_deg && t.bow_shock ? t.bow_shock->relative_rms : kNaN;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
                 angle_deg ? ""
                           : " (by Mach number alone: the table is calibrated on wedges, so this is "
                             "an extrapolation)");
-  return {buf, t.cpu_seconds, scatter};
+  return {buf, t.cpu_seconds, scatter, bow};
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
@@ -220,9 +222,11 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
 }
 
 Prediction predict_shock(const scene::Scene& s, const std::string& predictor, const std::string& out_dir, int np,
-                         bool force, double calibration_angle_scatter_deg) {
+                         bool force, double calibration_angle_scatter_deg,
+                         double calibration_bow_shock_relative_rms) {
   const auto p = make_predictor(predictor);
-  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force, calibration_angle_scatter_deg});
+  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force, calibration_angle_scatter_deg,
+                     calibration_bow_shock_relative_rms});
 }
 
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
@@ -246,7 +250,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   // The prediction: where the clustered grids put their fine band.
   const bool force_prediction = o.force.count("granular") || o.force.count("shockfit") || o.force.count("all");
   const Prediction pred = predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np,
-                                              force_prediction, calib.angle_scatter_deg});
+                                              force_prediction, calib.angle_scatter_deg,
+                                              calib.bow_shock_relative_rms});
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");

@@ -25,6 +25,19 @@ struct CalibrationEntry {
   double loo_restitution = scene::kNaN;
 };
 
+// The granular bow shock's out-of-sample error under this table's e(M):
+// on training blunt bodies (none a case study), the relative error of each
+// shockfit station's shock distance against the gas's (the finest steady
+// uniform grid of a `pipeline run` of the body). The RMS is over bodies,
+// each body's own RMS over its stations counting once (a body's stations
+// move together). Measured after the e(M) fit it belongs to: a new fit
+// drops it (docs/calibration.md, "The bow shock's band").
+struct BowShockScatter {
+  double relative_rms = scene::kNaN;
+  std::vector<std::string> bodies;  // the training scenes' names
+  int stations = 0;                 // stations compared, all bodies
+};
+
 struct CalibrationTable {
   double gamma = 1.4;
   std::vector<CalibrationEntry> entries;  // the training points
@@ -36,6 +49,7 @@ struct CalibrationTable {
   // CPU seconds the table cost to make (training runs and out-of-sample
   // checks); NaN when not recorded. Reports amortise it over the scenes it serves.
   double cpu_seconds = scene::kNaN;
+  std::optional<BowShockScatter> bow_shock;
 };
 
 CalibrationTable read_calibration(

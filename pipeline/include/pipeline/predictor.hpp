@@ -56,6 +56,10 @@ struct PredictContext {
   // angle (deg, RMS), when the scene's restitution came from the table and
   // the body has a wedge angle; NaN otherwise. Widens an attached shock's band.
   double calibration_angle_scatter_deg = scene::kNaN;
+  // The table's out-of-sample relative error of a bow shock's distances
+  // (RMS), when the restitution came from it and the body has no wedge
+  // angle; NaN otherwise. Widens a detached shock's band.
+  double calibration_bow_shock_relative_rms = scene::kNaN;
 };
 
 class Predictor {
@@ -92,6 +96,11 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
 // out-of-sample scatter (kZ95 times its RMS), which the run's interval cannot
 // see: the restitution itself is a fit. A NaN scatter adds nothing.
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg);
+// The half-width of a bow shock's band at a station whose shock lies
+// `distance` from the body with its own 95% half-width ci: the interval
+// combined with the calibration's relative scatter at the same 95% level,
+// hypot(ci, 1.96 relative_rms distance). ci alone when the scatter is NaN.
+double band_bow_half_width(double ci, double distance, double relative_rms);
 
 struct ShockPoint {
   scene::Vec2 point;

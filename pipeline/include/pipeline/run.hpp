@@ -30,6 +30,9 @@ struct AppliedCalibration {
   // The table's out-of-sample angle scatter (deg, RMS) when the restitution
   // came from it and the body has a wedge angle; NaN otherwise.
   double angle_scatter_deg = scene::kNaN;
+  // Its bow shocks' out-of-sample relative distance error (RMS) when the
+  // restitution came from it and the body has no wedge angle; NaN otherwise.
+  double bow_shock_relative_rms = scene::kNaN;
 };
 // Applies the calibration table when the scene leaves granular.restitution
 // unset; bodies without a wedge angle take its Mach-only fit.
@@ -52,7 +55,8 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
 struct Prediction;
 Prediction predict_shock(const scene::Scene& s, const std::string& predictor,
                          const std::string& out_dir, int np, bool force = false,
-                         double calibration_angle_scatter_deg = scene::kNaN);
+                         double calibration_angle_scatter_deg = scene::kNaN,
+                         double calibration_bow_shock_relative_rms = scene::kNaN);
 
 // Path of the built-in calibration table (pipeline/calibration.yaml in the source tree).
 std::string builtin_calibration_path();

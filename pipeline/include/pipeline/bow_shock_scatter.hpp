@@ -1,0 +1,43 @@
+#pragma once
+// The granular bow shock against the gas's, station by station: how far
+// the prediction's shock distances miss on blunt bodies it was not fitted
+// on. The calibration's e(M) is fitted on wedge angles only; this measures
+// what it gives a bow shock, so a clustered grid's band can cover it as an
+// attached shock's band covers the table's angle scatter.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pipeline/calibration.hpp"
+
+namespace pipeline {
+
+struct StationErrors {
+  std::string body;              // the scene's name
+  std::vector<double> relative;  // (d_granular - d_gas) / d_gas per station both accepted
+  double rms = scene::kNaN;      // of `relative`
+  double mean = scene::kNaN;
+};
+
+// Stations are matched by index; both files must come from the same body's
+// station layout (surface points equal to kSameStation), else InputError.
+// Fewer than kMinStations common stations: InputError naming the files.
+StationErrors station_errors(const std::string& granular_csv, const std::string& gas_csv);
+
+// A finished `pipeline run` of a blunt body with the granular predictor:
+// RUNDIR/shockfit/shock.csv against the finest steady uniform grid's
+// RUNDIR/cfd/uniform_h<level>/shockfit/shock.csv. InputError (naming the
+// directory) for a wedge, another predictor, no steady uniform grid, or a
+// case study's body at its Mach number (the case studies are predictions).
+StationErrors run_station_errors(const std::string& run_dir);
+
+// Each body's RMS counts once.
+BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies);
+
+// `pipeline calibrate --bow-shock-runs RUNDIR...`: measures the scatter on
+// the runs and writes it into the table at table_path (default: the
+// built-in one), keeping everything else; runs nothing. Returns the figures.
+nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
+                                    const std::string& table_path);
+
+}  // namespace pipeline

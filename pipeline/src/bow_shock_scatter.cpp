@@ -1,0 +1,162 @@
+#include "pipeline/bow_shock_scatter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "json_fields.hpp"
+#include "pipeline/grid_runs.hpp"
+#include "pipeline/run.hpp"
+#include "pipeline/studies.hpp"
+#include "scene/body_traits.hpp"
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+#include "scene/scene.hpp"
+#include "scene/shock_csv.hpp"
+
+namespace pipeline {
+
+namespace {
+namespace fs = std::filesystem;
+using scene::kNaN;
+
+// Station surface points of one layout agree to round-off (12 digits written).
+constexpr double kSameStation = 1e-9;
+// Fewer common stations than this say nothing about a shock's shape.
+constexpr std::size_t kMinStations = 3;
+// A resolved scene's e is the table's, written to round-off.
+constexpr double kSameRestitution = 1e-12;
+
+bool same_point(scene::Vec2 a, scene::Vec2 b) {
+  if (!std::isfinite(a.x) || !std::isfinite(b.x)) return true;  // a file without surface columns
+  return std::abs(a.x - b.x) <= kSameStation && std::abs(a.y - b.y) <= kSameStation;
+}
+
+bool is_case_study(const scene::Scene& s) {
+  for (const auto& path : case_study_scenes()) {
+    const scene::Scene c = scene::load_scene(path);
+    if (scene::section_yaml(c, "body") == scene::section_yaml(s, "body") &&
+        c.freestream.mach == s.freestream.mach)
+      return true;
+  }
+  return false;
+}
+// The scatter belongs to the table's e(M): a run made with another
+// restitution (its own, or an older table's) measures something else.
+void check_table_restitution(const std::string& run_dir, const std::string& table_path) {
+  const scene::Scene ran = scene::load_scene(run_dir + "/scene.resolved.yaml");
+  scene::Scene fresh = ran;
+  fresh.granular.restitution_given = false;
+  apply_calibration(fresh, table_path);
+  if (std::abs(fresh.granular.restitution - ran.granular.restitution) > kSameRestitution)
+    throw scene::InputError(run_dir + "/scene.resolved.yaml: key 'granular.restitution': " +
+                            std::to_string(ran.granular.restitution) + " is not the table's e(M) " +
+                            std::to_string(fresh.granular.restitution) + " (" + table_path +
+                            "); rerun the body with that table and no restitution of its own");
+}
+}  // namespace
+
+StationErrors station_errors(const std::string& granular_csv, const std::string& gas_csv) {
+  const auto g = scene::read_shock_csv(granular_csv).rows;
+  const auto c = scene::read_shock_csv(gas_csv).rows;
+  StationErrors out;
+  double ss = 0, sum = 0;
+  for (std::size_t i = 0; i < std::min(g.size(), c.size()); ++i) {
+    if (!same_point(g[i].surface, c[i].surface))
+      throw scene::InputError(granular_csv + " and " + gas_csv + ": station " + std::to_string(i) +
+                              " is at another surface point (not the same body's stations)");
+    if (!g[i].accepted || !c[i].accepted || !(c[i].distance > 0) || !std::isfinite(g[i].distance))
+      continue;
+    const double r = (g[i].distance - c[i].distance) / c[i].distance;
+    out.relative.push_back(r);
+    ss += r * r;
+    sum += r;
+  }
+  if (out.relative.size() < kMinStations)
+    throw scene::InputError(
+        granular_csv + " and " + gas_csv + ": " + std::to_string(out.relative.size()) +
+        " stations accepted in both (at least " + std::to_string(kMinStations) + " needed)");
+  const double n = static_cast<double>(out.relative.size());
+  out.rms = std::sqrt(ss / n);
+  out.mean = sum / n;
+  return out;
+}
+
+StationErrors run_station_errors(const std::string& run_dir) {
+  const std::string summary_path = run_dir + "/summary.json";
+  if (!fs::is_regular_file(summary_path))
+    throw scene::InputError(run_dir + ": no summary.json (not a finished `pipeline run`)");
+  nlohmann::json sum;
+  try {
+    sum = nlohmann::json::parse(scene::read_file(summary_path));
+  } catch (const nlohmann::json::exception& e) {
+    throw scene::InputError(summary_path + ": not JSON: " + e.what());
+  }
+  const scene::Scene s = scene::load_scene(run_dir + "/scene.resolved.yaml");
+  if (!s.body || scene::calibration_angle_deg(*s.body))
+    throw scene::InputError(run_dir +
+                            ": key 'body.kind': a bow shock's training needs a blunt body");
+  if (is_case_study(s))
+    throw scene::InputError(run_dir + ": the case study " + s.name +
+                            " is a prediction, never a training point");
+  const auto pred = sum.value("prediction", nlohmann::json::object());
+  if (pred.value("predictor", "") != "granular")
+    throw scene::InputError(summary_path +
+                            ": key 'prediction.predictor': the run's predictor is not granular");
+  double finest = kNaN;
+  for (const auto& r : sum.value("runs", nlohmann::json::array()))
+    if (r.value("family", "") == "uniform" && r.value("steady_state_reached", false)) {
+      const double level = number_or_nan(r, "level");
+      if (!(finest <= level)) finest = level;
+    }
+  if (!std::isfinite(finest))
+    throw scene::InputError(summary_path + ": key 'runs': no uniform grid reached steady state");
+  StationErrors e =
+      station_errors(run_dir + "/shockfit/shock.csv",
+                     run_dir + "/cfd/" + level_name("uniform", finest) + "/shockfit/shock.csv");
+  e.body = s.name;
+  return e;
+}
+
+BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies) {
+  BowShockScatter w;
+  if (bodies.empty()) return w;
+  double ss = 0;
+  for (const auto& b : bodies) {
+    ss += b.rms * b.rms;
+    w.bodies.push_back(b.body);
+    w.stations += static_cast<int>(b.relative.size());
+  }
+  w.relative_rms = std::sqrt(ss / static_cast<double>(bodies.size()));
+  return w;
+}
+
+nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
+                                    const std::string& table_path) {
+  const std::string path = table_path.empty() ? builtin_calibration_path() : table_path;
+  CalibrationTable table =
+      read_calibration(path);  // a missing or malformed table fails before anything
+  std::vector<StationErrors> bodies;
+  nlohmann::json per_body = nlohmann::json::array();
+  for (const auto& dir : run_dirs) {
+    bodies.push_back(run_station_errors(dir));
+    check_table_restitution(dir, path);
+    const auto& b = bodies.back();
+    per_body.push_back({{"body", b.body},
+                        {"run", dir},
+                        {"stations", b.relative.size()},
+                        {"relative_rms", b.rms},
+                        {"relative_mean", b.mean}});
+  }
+  if (bodies.size() < 2)
+    throw scene::InputError(
+        "calibrate: --bow-shock-runs needs at least two training runs (one body has no scatter)");
+  table.bow_shock = pooled_scatter(bodies);
+  write_calibration(table, path);
+  return {{"table", path},
+          {"relative_rms", table.bow_shock->relative_rms},
+          {"stations", table.bow_shock->stations},
+          {"bodies", per_body}};
+}
+
+}  // namespace pipeline

@@ -103,11 +103,14 @@ StationErrors run_station_errors(const std::string& run_dir) {
   if (pred.value("predictor", "") != "granular")
     throw scene::InputError(summary_path +
                             ": key 'prediction.predictor': the run's predictor is not granular");
-  double finest = kNaN;
+  double finest = kNaN, grid_cpu = kNaN;
   for (const auto& r : sum.value("runs", nlohmann::json::array()))
     if (r.value("family", "") == "uniform" && r.value("steady_state_reached", false)) {
       const double level = number_or_nan(r, "level");
-      if (!(finest <= level)) finest = level;
+      if (!(finest <= level)) {
+        finest = level;
+        grid_cpu = number_or_nan(r, "cpu_seconds") + number_or_nan(r, "mesh_cpu_seconds");
+      }
     }
   if (!std::isfinite(finest))
     throw scene::InputError(summary_path + ": key 'runs': no uniform grid reached steady state");
@@ -115,6 +118,7 @@ StationErrors run_station_errors(const std::string& run_dir) {
       station_errors(run_dir + "/shockfit/shock.csv",
                      run_dir + "/cfd/" + level_name("uniform", finest) + "/shockfit/shock.csv");
   e.body = s.name;
+  e.cpu_seconds = number_or_nan(pred, "cpu_seconds") + grid_cpu;
   return e;
 }
 
@@ -122,8 +126,10 @@ BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies) {
   BowShockScatter w;
   if (bodies.empty()) return w;
   double ss = 0;
+  w.cpu_seconds = 0.0;
   for (const auto& b : bodies) {
     ss += b.rms * b.rms;
+    w.cpu_seconds += b.cpu_seconds;
     w.bodies.push_back(b.body);
     w.stations += static_cast<int>(b.relative.size());
   }
@@ -139,14 +145,15 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   std::vector<StationErrors> bodies;
   nlohmann::json per_body = nlohmann::json::array();
   for (const auto& dir : run_dirs) {
-    bodies.push_back(run_station_errors(dir));
     check_table_restitution(dir, path);
+    bodies.push_back(run_station_errors(dir));
     const auto& b = bodies.back();
     per_body.push_back({{"body", b.body},
                         {"run", dir},
                         {"stations", b.relative.size()},
                         {"relative_rms", b.rms},
-                        {"relative_mean", b.mean}});
+                        {"relative_mean", b.mean},
+                        {"cpu_seconds", json_number(b.cpu_seconds)}});
   }
   if (bodies.size() < 2)
     throw scene::InputError(
@@ -156,6 +163,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   return {{"table", path},
           {"relative_rms", table.bow_shock->relative_rms},
           {"stations", table.bow_shock->stations},
+          {"cpu_seconds", json_number(table.bow_shock->cpu_seconds)},
           {"bodies", per_body}};
 }
 

@@ -127,6 +127,7 @@ CalibrationTable read_calibration(const std::string& path) {
         bad(path, b["relative_rms"], "bow_shock.relative_rms", "expected a finite number >= 0");
       if (const auto names = b["bodies"]) w.bodies = names.as<std::vector<std::string>>();
       w.stations = b["stations"] ? b["stations"].as<int>() : 0;
+      w.cpu_seconds = optional_number(b, "cpu_seconds", kNaN);
       t.bow_shock = w;
     }
     if (const auto tp = root["training_points"]) {
@@ -175,7 +176,10 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
     e.SetDoublePrecision(kCoefficientDigits);
     e << YAML::Key << "bow_shock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "relative_rms"
       << YAML::Value << t.bow_shock->relative_rms << YAML::Key << "bodies" << YAML::Value << YAML::Flow
-      << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value << t.bow_shock->stations << YAML::EndMap;
+      << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value << t.bow_shock->stations;
+    if (std::isfinite(t.bow_shock->cpu_seconds))
+      e << YAML::Key << "cpu_seconds" << YAML::Value << t.bow_shock->cpu_seconds;
+    e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
   }
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;

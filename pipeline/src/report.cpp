@@ -448,6 +448,13 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
                                         format_number(scatter, 3) + " deg)"
                                   : " (the angle's own 95% interval; the scene sets its restitution, so no calibration scatter)")
        << ".";
+  const double bow = number_or_nan(details, "calibration_bow_shock_relative_rms");
+  if (in.prediction.kind == scene::ShockKind::detached && in.prediction.predictor == "granular")
+    md << (std::isfinite(bow) ? " Its band at each station: the station's 95% interval combined with 1.96 times the "
+                                "calibration's out-of-sample relative error of bow-shock distances (" +
+                                    format_number(bow, 3) + " RMS) times the station's distance."
+                              : " Its band: the stations' own 95% intervals (no bow-shock scatter in the calibration, "
+                                "or the scene sets its restitution).");
   if (angle && std::abs(number_or_nan(g, "error_deg")) > 1.0)
     md << " **The predicted shock is off the exact shock by more than 1 deg: the clustered band may miss part of the CFD shock.**";
   md << "\n\n";

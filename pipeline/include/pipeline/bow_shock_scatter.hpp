@@ -17,6 +17,7 @@ struct StationErrors {
   std::vector<double> relative;  // (d_granular - d_gas) / d_gas per station both accepted
   double rms = scene::kNaN;      // of `relative`
   double mean = scene::kNaN;
+  double cpu_seconds = scene::kNaN;  // the run's predictor and the compared uniform grid
 };
 
 // Stations are matched by index; both files must come from the same body's

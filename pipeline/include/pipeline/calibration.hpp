@@ -36,6 +36,9 @@ struct BowShockScatter {
   double relative_rms = scene::kNaN;
   std::vector<std::string> bodies;  // the training scenes' names
   int stations = 0;                 // stations compared, all bodies
+  // What the training runs cost (their predictors and the uniform grids
+  // compared with); NaN when not recorded.
+  double cpu_seconds = scene::kNaN;
 };
 
 struct CalibrationTable {

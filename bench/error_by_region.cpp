@@ -24,15 +24,6 @@ constexpr std::array<double, 6> kDistanceEdges{0.0, 0.05, 0.15, 0.3, 0.5, 1e300}
 // Cell sizes (square root of the area) in units of the smallest cell.
 constexpr std::array<double, 5> kSizeEdges{0.0, 1.5, 3.0, 6.0, 1e300};
 
-double forebody_end_x(const scene::BodyGeometry& g) {
-  scene::Vec2 widest = g.polyline.front();
-  for (const auto& v : g.polyline)
-    if (std::abs(v.y) > std::abs(widest.y) ||
-        (std::abs(v.y) == std::abs(widest.y) && v.x < widest.x))
-      widest = v;
-  return widest.x;
-}
-
 template <std::size_t N>
 std::size_t bin_of(const std::array<double, N>& edges, double v) {
   for (std::size_t i = 0; i + 1 < N; ++i)
@@ -50,7 +41,7 @@ void report(const scene::Scene& s, const scene::BodyGeometry& g, const std::stri
   const auto u = cfd::read_vector_field(t + "/U", mesh.cells());
   const double gamma = s.freestream.gamma, mach = s.freestream.mach;
   const double h_inf = 1.0 / (gamma - 1.0) + 0.5 * mach * mach;
-  const double x_fore = forebody_end_x(g), L = g.length;
+  const double x_fore = scene::widest_section_x(g), L = g.length;
 
   double h_small = 1e300;
   for (std::size_t c = 0; c < mesh.cells(); ++c)

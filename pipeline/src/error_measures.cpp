@@ -55,18 +55,9 @@ Solution read_solution(const std::string& case_dir, const cfd::TimeDir& t, std::
           cfd::read_vector_field(d + "/U", cells)};
 }
 
-// The forebody ends at the body's widest section (the most upstream outline
-// vertex of largest |y|): behind it lies the wake, unsteady and not adiabatic
-// to the scheme, where total enthalpy is no reference.
-double forebody_end_x(const scene::BodySpec& b) {
-  const auto g = scene::make_body(b);
-  scene::Vec2 widest = g.polyline.front();
-  for (const auto& v : g.polyline)
-    if (std::abs(v.y) > std::abs(widest.y) ||
-        (std::abs(v.y) == std::abs(widest.y) && v.x < widest.x))
-      widest = v;
-  return widest.x;
-}
+// The forebody ends at the body's widest section: behind it lies the wake,
+// unsteady and not adiabatic to the scheme, where total enthalpy is no reference.
+double forebody_end_x(const scene::BodySpec& b) { return scene::widest_section_x(scene::make_body(b)); }
 
 // Largest change of the stagnation pressure over the last written times.
 double stagnation_wander(const std::string& case_dir, const std::vector<cfd::TimeDir>& times,

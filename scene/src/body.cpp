@@ -211,6 +211,14 @@ bool point_in_body(const BodyGeometry& g, Vec2 p) {
   return poly.bounded_side(Kernel::Point_2(p.x, p.y)) != CGAL::ON_UNBOUNDED_SIDE;
 }
 
+double widest_section_x(const BodyGeometry& g) {
+  Vec2 widest = g.polyline.front();
+  for (const auto& v : g.polyline)
+    if (std::abs(v.y) > std::abs(widest.y) || (std::abs(v.y) == std::abs(widest.y) && v.x < widest.x))
+      widest = v;
+  return widest.x;
+}
+
 double signed_distance(const BodyGeometry& g, Vec2 p) {
   double d = std::numeric_limits<double>::infinity();
   const std::size_t n = g.polyline.size();

@@ -40,6 +40,10 @@ bool point_in_body(const BodyGeometry& g, Vec2 p);
 // Negative inside the body, positive outside.
 double signed_distance(const BodyGeometry& g, Vec2 p);
 
+// x of the body's widest section: the most upstream outline vertex of
+// largest |y|. A blunt body's forebody lies ahead of it, its wake behind.
+double widest_section_x(const BodyGeometry& g);
+
 // Outward unit normal of polyline edge i (from vertex i to i+1).
 Vec2 edge_normal(const BodyGeometry& g, std::size_t i);
 

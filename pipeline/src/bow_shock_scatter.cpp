@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "json_fields.hpp"
 #include "pipeline/grid_runs.hpp"
+#include "pipeline/rejudge.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/body_traits.hpp"
@@ -17,7 +17,6 @@
 namespace pipeline {
 
 namespace {
-namespace fs = std::filesystem;
 using scene::kNaN;
 
 // Station surface points of one layout agree to round-off (12 digits written).
@@ -84,14 +83,8 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
 
 StationErrors run_station_errors(const std::string& run_dir) {
   const std::string summary_path = run_dir + "/summary.json";
-  if (!fs::is_regular_file(summary_path))
-    throw scene::InputError(run_dir + ": no summary.json (not a finished `pipeline run`)");
-  nlohmann::json sum;
-  try {
-    sum = nlohmann::json::parse(scene::read_file(summary_path));
-  } catch (const nlohmann::json::exception& e) {
-    throw scene::InputError(summary_path + ": not JSON: " + e.what());
-  }
+  const nlohmann::json sum =
+      read_run_summary(summary_path, "not found (not a finished `pipeline run`)");
   const scene::Scene s = scene::load_scene(run_dir + "/scene.resolved.yaml");
   if (!s.body || scene::calibration_angle_deg(*s.body))
     throw scene::InputError(run_dir +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "json_fields.hpp"
 #include "pipeline/grid_runs.hpp"
@@ -138,6 +139,9 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   std::vector<StationErrors> bodies;
   nlohmann::json per_body = nlohmann::json::array();
   for (const auto& dir : run_dirs) {
+    if (!std::filesystem::is_directory(dir))
+      throw scene::InputError(
+          dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
     check_table_restitution(dir, path);
     bodies.push_back(run_station_errors(dir));
     const auto& b = bodies.back();

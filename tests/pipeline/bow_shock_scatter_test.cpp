@@ -185,4 +185,10 @@ TEST(BowShockScatter, RunsWithAnotherRestitutionAreRefused) {
     EXPECT_NE(std::string(e.what()).find("granular.restitution"), std::string::npos) << e.what();
   }
   EXPECT_EQ(scene::read_file(table), before);
+  try {
+    pipeline::calibrate_bow_shocks({(d / "missing").string(), (d / "a").string()}, table);
+    FAIL() << "a missing run directory was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no such directory"), std::string::npos) << e.what();
+  }
 }

@@ -87,7 +87,7 @@ double band_bow_half_width(double ci, double distance, double relative_rms) {
 std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
   std::vector<ShockPoint> out;
   for (const auto& r : scene::read_shock_csv(path).rows)
-    if (r.accepted) out.push_back({r.shock, std::isfinite(r.ci) ? r.ci : 0.0});
+    if (r.accepted) out.push_back({r.shock, std::isfinite(r.ci) ? r.ci : 0.0, r.distance});
   return out;
 }
 

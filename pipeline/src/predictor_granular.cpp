@@ -19,7 +19,6 @@
 #include "pipeline/run.hpp"
 #include "pipeline/stage_cache.hpp"
 #include "scene/body.hpp"
-#include "scene/shock_csv.hpp"
 
 namespace pipeline {
 
@@ -68,32 +67,30 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
     p.half_width = ray.half_width;
     p.shock_csv = cx.out_dir + "/shock_ray.csv";
     write_shock_curve(p.shock_csv, p.curve, p.half_width);
-  } else if (p.kind == scene::ShockKind::detached && std::isfinite(cx.calibration_bow_shock_relative_rms)) {
-    // The stations' own intervals say how well this run knows its shock, not
-    // how far the calibrated gas is from the ideal gas's: the band also
-    // covers the table's out-of-sample error of a bow shock's distances.
-    const double rel = cx.calibration_bow_shock_relative_rms;
-    for (const auto& row : scene::read_shock_csv(p.shock_csv).rows) {
-      if (!row.accepted) continue;
-      p.curve.push_back(row.shock);
-      p.half_width.push_back(band_bow_half_width(row.ci, row.distance, rel));
-    }
-    p.fingerprint = fingerprint({p.fingerprint, fmt::format("bow band {:.17g}", rel)});
-    p.shock_csv = cx.out_dir + "/shock_band.csv";
-    write_shock_curve(p.shock_csv, p.curve, p.half_width);
   } else if (p.kind != scene::ShockKind::none) {
+    // The stations' own intervals say how well this run knows its shock, not
+    // how far the calibrated gas is from the ideal gas's: a bow shock's band
+    // also covers the table's out-of-sample error of its distances (NaN: none).
+    const double rel =
+        p.kind == scene::ShockKind::detached ? cx.calibration_bow_shock_relative_rms : scene::kNaN;
     for (const auto& q : read_accepted_shock(p.shock_csv)) {
       p.curve.push_back(q.point);
-      p.half_width.push_back(q.half_width);
+      p.half_width.push_back(band_bow_half_width(q.half_width, q.distance, rel));
+    }
+    if (std::isfinite(rel)) {
+      p.fingerprint = fingerprint({p.fingerprint, fmt::format("bow band {:.17g}", rel)});
+      p.shock_csv = cx.out_dir + "/shock_band.csv";
+      write_shock_curve(p.shock_csv, p.curve, p.half_width);
     }
   }
-  p.details = {{"restitution", cx.scene.granular.restitution},
-               {"granular", r.value("granular", nlohmann::json::object())},
-               {"field", r.value("field", "")},
-               {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
-               {"band_angle_half_width_deg", json_number(band_ci)},
-               {"calibration_bow_shock_relative_rms", json_number(cx.calibration_bow_shock_relative_rms)},
-               {"averaging", averaging_report(r)}};
+  p.details = {
+      {"restitution", cx.scene.granular.restitution},
+      {"granular", r.value("granular", nlohmann::json::object())},
+      {"field", r.value("field", "")},
+      {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
+      {"band_angle_half_width_deg", json_number(band_ci)},
+      {"calibration_bow_shock_relative_rms", json_number(cx.calibration_bow_shock_relative_rms)},
+      {"averaging", averaging_report(r)}};
   return p;
 }
 

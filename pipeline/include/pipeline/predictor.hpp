@@ -105,6 +105,7 @@ double band_bow_half_width(double ci, double distance, double relative_rms);
 struct ShockPoint {
   scene::Vec2 point;
   double half_width = 0;
+  double distance = scene::kNaN;  // from the body along the station's normal (NaN: not stated)
 };
 // The accepted points of a shock.csv in file order (InputError naming the
 // file when it is malformed or holds fewer than two).

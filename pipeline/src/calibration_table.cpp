@@ -244,4 +244,14 @@ std::optional<double> interpolate_restitution(const CalibrationTable& t, double 
   return esum / wsum;
 }
 
+std::optional<MachRange> training_mach_range(const CalibrationTable& t) {
+  if (t.entries.empty()) return std::nullopt;
+  MachRange r{t.entries.front().mach, t.entries.front().mach};
+  for (const auto& c : t.entries) {
+    r.low = std::min(r.low, c.mach);
+    r.high = std::max(r.high, c.mach);
+  }
+  return r;
+}
+
 }  // namespace pipeline

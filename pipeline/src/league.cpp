@@ -85,6 +85,8 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
   j["scene"] = s.name;
   j["reference"] = prediction_reference(s, p);
   if (!calib.note.empty()) j["calibration"] = calib.note;
+  j["calibration_outside_training_mach"] = calib.outside_training_mach;
+  if (calib.outside_training_mach) scene::log_line("pipeline: " + calib.note, true);
   const std::string csv = o.out_dir + "/shock.csv";
   if (fs::weakly_canonical(p.shock_csv) != fs::weakly_canonical(csv))
     fs::copy_file(p.shock_csv, csv, fs::copy_options::overwrite_existing);

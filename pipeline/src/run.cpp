@@ -162,9 +162,21 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
                 angle_deg ? ""
                           : " (by Mach number alone: the table is calibrated on wedges, so this is "
                             "an extrapolation)");
+  std::string note = buf;
+  const auto range = training_mach_range(t);
+  const bool outside = range && !range->contains(s.freestream.mach);
+  if (outside) {
+    std::snprintf(buf, sizeof buf,
+                  "; WARNING: Mach %g lies outside the table's training range %g-%g, so e(M) is "
+                  "extrapolated%s and this prediction's error is unmeasured (its band may miss the "
+                  "gas shock)",
+                  s.freestream.mach, range->low, range->high,
+                  *e >= 1.0 ? " past the elastic limit and held at e = 1" : "");
+    note += buf;
+  }
   // A bow shock's prediction owes its band to the blunt training runs too.
   const double cost = std::isfinite(bow) ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
-  return {buf, cost, scatter, bow};
+  return {note, cost, scatter, bow, outside};
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
@@ -240,7 +252,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const AppliedCalibration calib = apply_calibration(s, o.calibration_path);
   const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
   const std::string& calib_note = calib.note;
-  if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note);
+  if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note, calib.outside_training_mach);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));
   const auto& levels = s.pipeline.levels;
   const int n_stages = 2 + (s.pipeline.cfd ? 2 : 1) * (2 * static_cast<int>(levels.size()) + 1) + 1;
@@ -283,7 +295,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   charge_calibration(verdict, verdict_runs(fam_c), verdict_runs(fam_u), calib_cpu,
                      static_cast<int>(case_study_scenes().size()));
   ReportInputs in{s, o.out_dir, pred, ref, cmp, verdict, calib_note, seconds_since(t_start), convergence};
-  const nlohmann::json summary = make_summary(in);
+  nlohmann::json summary = make_summary(in);
+  summary["calibration_outside_training_mach"] = calib.outside_training_mach;
   const std::string suffix = o.output_suffix.value_or("");
   scene::write_json_atomic(o.out_dir + "/summary" + suffix + ".json", summary);
   write_report(in, summary, "report" + suffix + ".md");

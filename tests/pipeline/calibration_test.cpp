@@ -143,6 +143,37 @@ TEST(Calibration, FittedTableAppliedToAScene) {
   EXPECT_TRUE(std::isnan(pipeline::apply_calibration(disc, path).angle_scatter_deg));
 }
 
+TEST(Calibration, OutsideTheTrainingMachRangeIsSaid) {
+  // The training entries span Mach 2.5-6.
+  const auto range = pipeline::training_mach_range(fitted_table());
+  ASSERT_TRUE(range.has_value());
+  EXPECT_DOUBLE_EQ(range->low, 2.5);
+  EXPECT_DOUBLE_EQ(range->high, 6.0);
+  EXPECT_FALSE(pipeline::training_mach_range(pipeline::CalibrationTable{}).has_value());
+  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_range.yaml").string();
+  pipeline::write_calibration(fitted_table(), path);
+  // Inside (the ends included): no warning.
+  for (const char* mach : {"2.5", "4", "6"}) {
+    auto s = scene::parse_scene(std::string("body: {kind: disc, radius: 0.5}\nfreestream: {mach: ") +
+                                mach + "}\n");
+    const auto applied = pipeline::apply_calibration(s, path);
+    EXPECT_FALSE(applied.outside_training_mach) << mach;
+    EXPECT_EQ(applied.note.find("WARNING"), std::string::npos) << mach;
+  }
+  // Above: extrapolated, said so.
+  auto fast = scene::parse_scene("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 7}\n");
+  const auto above = pipeline::apply_calibration(fast, path);
+  EXPECT_TRUE(above.outside_training_mach);
+  EXPECT_NE(above.note.find("outside the table's training range 2.5-6"), std::string::npos);
+  EXPECT_EQ(above.note.find("elastic limit"), std::string::npos);
+  // Below: the Mach-only fit passes e = 1 and is held there.
+  auto slow = scene::parse_scene("body: {kind: disc, radius: 1}\nfreestream: {mach: 1.5}\n");
+  const auto below = pipeline::apply_calibration(slow, path);
+  EXPECT_TRUE(below.outside_training_mach);
+  EXPECT_DOUBLE_EQ(slow.granular.restitution, 1.0);
+  EXPECT_NE(below.note.find("held at e = 1"), std::string::npos);
+}
+
 TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
   const auto path = (std::filesystem::temp_directory_path() / "calib_bad_fit.yaml").string();
   const std::string entries = "entries: [{mach: 3, angle_deg: 10, restitution: 0.98}]\n";

@@ -75,4 +75,13 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t);
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
                                               double angle_deg);
 
+// The Mach numbers the table's training entries span, {lowest, highest};
+// nullopt for an empty table. Outside it e(M) is an extrapolation whose
+// error no run has measured.
+struct MachRange {
+  double low = 0, high = 0;
+  bool contains(double mach) const { return mach >= low && mach <= high; }
+};
+std::optional<MachRange> training_mach_range(const CalibrationTable& t);
+
 }  // namespace pipeline

@@ -33,6 +33,9 @@ struct AppliedCalibration {
   // Its bow shocks' out-of-sample relative distance error (RMS) when the
   // restitution came from it and the body has no wedge angle; NaN otherwise.
   double bow_shock_relative_rms = scene::kNaN;
+  // The scene's Mach number lies outside the table's training range: e(M)
+  // is extrapolated, and the prediction's error there is unmeasured.
+  bool outside_training_mach = false;
 };
 // Applies the calibration table when the scene leaves granular.restitution
 // unset; bodies without a wedge angle take its Mach-only fit.

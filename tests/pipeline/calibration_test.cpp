@@ -154,8 +154,8 @@ TEST(Calibration, OutsideTheTrainingMachRangeIsSaid) {
   pipeline::write_calibration(fitted_table(), path);
   // Inside (the ends included): no warning.
   for (const char* mach : {"2.5", "4", "6"}) {
-    auto s = scene::parse_scene(std::string("body: {kind: disc, radius: 0.5}\nfreestream: {mach: ") +
-                                mach + "}\n");
+    auto s = scene::parse_scene(
+        std::string("body: {kind: disc, radius: 0.5}\nfreestream: {mach: ") + mach + "}\n");
     const auto applied = pipeline::apply_calibration(s, path);
     EXPECT_FALSE(applied.outside_training_mach) << mach;
     EXPECT_EQ(applied.note.find("WARNING"), std::string::npos) << mach;

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "json_fields.hpp"
+#include "pipeline/bow_shape_fit.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/rejudge.hpp"
 #include "pipeline/run.hpp"
@@ -24,8 +25,8 @@ using scene::kNaN;
 constexpr double kSameStation = 1e-9;
 // Fewer common stations than this say nothing about a shock's shape.
 constexpr std::size_t kMinStations = 3;
-// A resolved scene's e is the table's, written to round-off.
-constexpr double kSameRestitution = 1e-12;
+// A resolved scene's e is the table's, rounded to 1e-6 when applied.
+constexpr double kSameRestitution = 0.5e-6 + 1e-12;
 
 bool same_point(scene::Vec2 a, scene::Vec2 b) {
   if (!std::isfinite(a.x) || !std::isfinite(b.x)) return true;  // a file without surface columns
@@ -43,15 +44,16 @@ bool is_case_study(const scene::Scene& s) {
 }
 // The scatter belongs to the table's e(M): a run made with another
 // restitution (its own, or an older table's) measures something else.
-void check_table_restitution(const std::string& run_dir, const std::string& table_path) {
+// (The wedge e(M), not a shape's own fit: the pooled scatter is what a body
+// without a shape fit gets from it.)
+void check_table_restitution(const std::string& run_dir, const CalibrationTable& t,
+                             const std::string& table_path) {
   const scene::Scene ran = scene::load_scene(run_dir + "/scene.resolved.yaml");
-  scene::Scene fresh = ran;
-  fresh.granular.restitution_given = false;
-  apply_calibration(fresh, table_path);
-  if (std::abs(fresh.granular.restitution - ran.granular.restitution) > kSameRestitution)
+  const double e = interpolate_restitution(t, ran.freestream.mach, kNaN).value_or(kNaN);
+  if (!(std::abs(e - ran.granular.restitution) <= kSameRestitution))
     throw scene::InputError(run_dir + "/scene.resolved.yaml: key 'granular.restitution': " +
                             std::to_string(ran.granular.restitution) + " is not the table's e(M) " +
-                            std::to_string(fresh.granular.restitution) + " (" + table_path +
+                            std::to_string(e) + " (" + table_path +
                             "); rerun the body with that table and no restitution of its own");
 }
 }  // namespace
@@ -82,7 +84,7 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
   return out;
 }
 
-StationErrors run_station_errors(const std::string& run_dir) {
+BowTrainingRun bow_training_run(const std::string& run_dir) {
   const std::string summary_path = run_dir + "/summary.json";
   const nlohmann::json sum =
       read_run_summary(summary_path, "not found (not a finished `pipeline run`)");
@@ -108,11 +110,17 @@ StationErrors run_station_errors(const std::string& run_dir) {
     }
   if (!std::isfinite(finest))
     throw scene::InputError(summary_path + ": key 'runs': no uniform grid reached steady state");
-  StationErrors e =
-      station_errors(run_dir + "/shockfit/shock.csv",
-                     run_dir + "/cfd/" + level_name("uniform", finest) + "/shockfit/shock.csv");
-  e.body = s.name;
-  e.cpu_seconds = number_or_nan(pred, "cpu_seconds") + grid_cpu;
+  const std::string gas = run_dir + "/cfd/" + level_name("uniform", finest) + "/shockfit/";
+  return {
+      s,       run_dir, gas + "shock.csv", gas + "summary.json", number_or_nan(pred, "cpu_seconds"),
+      grid_cpu};
+}
+
+StationErrors run_station_errors(const std::string& run_dir) {
+  const BowTrainingRun r = bow_training_run(run_dir);
+  StationErrors e = station_errors(run_dir + "/shockfit/shock.csv", r.gas_csv);
+  e.body = r.scene.name;
+  e.cpu_seconds = r.predictor_cpu_seconds + r.grid_cpu_seconds;
   return e;
 }
 
@@ -132,7 +140,7 @@ BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies) {
 }
 
 nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
-                                    const std::string& table_path) {
+                                    const std::string& table_path, const BowShapeOptions* shapes) {
   const std::string path = table_path.empty() ? builtin_calibration_path() : table_path;
   CalibrationTable table =
       read_calibration(path);  // a missing or malformed table fails before anything
@@ -142,7 +150,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
     if (!std::filesystem::is_directory(dir))
       throw scene::InputError(
           dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
-    check_table_restitution(dir, path);
+    check_table_restitution(dir, table, path);
     bodies.push_back(run_station_errors(dir));
     const auto& b = bodies.back();
     per_body.push_back({{"body", b.body},
@@ -155,13 +163,24 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   if (bodies.size() < 2)
     throw scene::InputError(
         "calibrate: --bow-shock-runs needs at least two training runs (one body has no scatter)");
-  table.bow_shock = pooled_scatter(bodies);
+  BowShockScatter scatter = pooled_scatter(bodies);
+  nlohmann::json shape_report = nlohmann::json::array();
+  if (shapes) {
+    std::vector<BowTrainingRun> runs;
+    for (const auto& dir : run_dirs) runs.push_back(bow_training_run(dir));
+    const BowShapeResult fitted = fit_bow_shapes(runs, table, *shapes);
+    scatter.shapes = fitted.fits;
+    scatter.cpu_seconds += fitted.cpu_seconds;
+    shape_report = {{"bodies", fitted.report}, {"fits", fitted.shapes}};
+  }
+  table.bow_shock = scatter;
   write_calibration(table, path);
   return {{"table", path},
           {"relative_rms", table.bow_shock->relative_rms},
           {"stations", table.bow_shock->stations},
           {"cpu_seconds", json_number(table.bow_shock->cpu_seconds)},
-          {"bodies", per_body}};
+          {"bodies", per_body},
+          {"shapes", shape_report}};
 }
 
 }  // namespace pipeline

@@ -18,9 +18,6 @@ using scene::kNaN;
 // Distances in an old table: one Mach number counts as much as 5 deg of wedge angle.
 constexpr double kAngleScaleDeg = 5.0;
 constexpr double kExactMatch = 1e-9;
-// e = 1 is the elastic limit: a fit extrapolated below the training Mach
-// numbers (c1 > 0) can exceed it, which no disk collision can.
-constexpr double kMaxRestitution = 1.0;
 // Per-point values are measured to far less than this many digits; the
 // coefficients carry all 17 so that a reread table evaluates identically.
 constexpr int kEntryDigits = 6;
@@ -60,6 +57,71 @@ RestitutionFit read_fit(const std::string& path, const YAML::Node& n, const std:
 
 double optional_number(const YAML::Node& n, const char* key, double fallback) {
   return n[key] ? n[key].as<double>() : fallback;
+}
+
+// A shape's fit needs more bodies than coefficients, else it has no
+// left-out error to widen its band with.
+constexpr std::size_t kShapeCoefficients = 2;
+
+BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const std::string& key) {
+  if (!n.IsMap() || !n["shape"] || !n["coefficients"] || !n["relative_rms"] || !n["points"])
+    bad(path, n, key, "expected a map {shape, coefficients, relative_rms, points}");
+  BowShapeFit f;
+  f.shape = n["shape"].as<std::string>();
+  const auto c = n["coefficients"];
+  if (!c.IsSequence() || c.size() != kShapeCoefficients)
+    bad(path, c, key + ".coefficients", "expected [c0, c1] of e = c0 + c1/M^2");
+  for (const auto& x : c) {
+    const double v = x.as<double>();
+    if (!std::isfinite(v)) bad(path, x, key + ".coefficients", "not a finite number");
+    f.coefficients.push_back(v);
+  }
+  f.relative_rms = n["relative_rms"].as<double>();
+  if (!(std::isfinite(f.relative_rms) && f.relative_rms >= 0))
+    bad(path, n["relative_rms"], key + ".relative_rms", "expected a finite number >= 0");
+  const auto pts = n["points"];
+  if (!pts.IsSequence() || pts.size() <= kShapeCoefficients)
+    bad(path, pts, key + ".points",
+        "expected at least " + std::to_string(kShapeCoefficients + 1) + " training bodies");
+  for (const auto& q : pts) {
+    if (!q.IsMap() || !q["body"] || !q["mach"] || !q["restitution"])
+      bad(path, q, key + ".points", "expected maps {body, mach, restitution, ...}");
+    BowShapePoint p;
+    p.body = q["body"].as<std::string>();
+    p.mach = q["mach"].as<double>();
+    p.restitution = q["restitution"].as<double>();
+    p.restitution_ci = optional_number(q, "restitution_ci", 0.0);
+    p.loo_restitution = optional_number(q, "loo_restitution", kNaN);
+    p.loo_mean = optional_number(q, "loo_mean", kNaN);
+    p.loo_rms = optional_number(q, "loo_rms", kNaN);
+    p.loo_standoff = optional_number(q, "loo_standoff", kNaN);
+    if (!(std::isfinite(p.mach) && p.mach > 0))
+      bad(path, q["mach"], key + ".points.mach", "expected a finite number > 0");
+    f.points.push_back(p);
+  }
+  return f;
+}
+
+void write_shape_fit(YAML::Emitter& e, const BowShapeFit& f) {
+  const auto number = [&e](const char* key, double v) {
+    if (std::isfinite(v)) e << YAML::Key << key << YAML::Value << v;
+  };
+  e << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << f.shape << YAML::Key << "formula"
+    << YAML::Value << YAML::DoubleQuoted << "e = c0 + c1/M^2" << YAML::Key << "coefficients"
+    << YAML::Value << YAML::Flow << f.coefficients << YAML::Key << "relative_rms" << YAML::Value
+    << f.relative_rms << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+  for (const auto& p : f.points) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "body" << YAML::Value << p.body;
+    number("mach", p.mach);
+    number("restitution", p.restitution);
+    number("restitution_ci", p.restitution_ci);
+    number("loo_restitution", p.loo_restitution);
+    number("loo_mean", p.loo_mean);
+    number("loo_rms", p.loo_rms);
+    number("loo_standoff", p.loo_standoff);
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::EndMap;
 }
 }  // namespace
 
@@ -128,6 +190,13 @@ CalibrationTable read_calibration(const std::string& path) {
       if (const auto names = b["bodies"]) w.bodies = names.as<std::vector<std::string>>();
       w.stations = b["stations"] ? b["stations"].as<int>() : 0;
       w.cpu_seconds = optional_number(b, "cpu_seconds", kNaN);
+      if (const auto shapes = b["shapes"]) {
+        if (!shapes.IsSequence())
+          bad(path, shapes, "bow_shock.shapes", "expected a list of shape fits");
+        for (std::size_t i = 0; i < shapes.size(); ++i)
+          w.shapes.push_back(
+              read_shape_fit(path, shapes[i], "bow_shock.shapes[" + std::to_string(i) + "]"));
+      }
       t.bow_shock = w;
     }
     if (const auto tp = root["training_points"]) {
@@ -174,11 +243,17 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
   }
   if (t.bow_shock) {
     e.SetDoublePrecision(kCoefficientDigits);
-    e << YAML::Key << "bow_shock" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "relative_rms"
-      << YAML::Value << t.bow_shock->relative_rms << YAML::Key << "bodies" << YAML::Value << YAML::Flow
-      << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value << t.bow_shock->stations;
+    e << YAML::Key << "bow_shock" << YAML::Value << YAML::BeginMap << YAML::Key << "relative_rms"
+      << YAML::Value << t.bow_shock->relative_rms << YAML::Key << "bodies" << YAML::Value
+      << YAML::Flow << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value
+      << t.bow_shock->stations;
     if (std::isfinite(t.bow_shock->cpu_seconds))
       e << YAML::Key << "cpu_seconds" << YAML::Value << t.bow_shock->cpu_seconds;
+    if (!t.bow_shock->shapes.empty()) {
+      e << YAML::Key << "shapes" << YAML::Value << YAML::BeginSeq;
+      for (const auto& f : t.bow_shock->shapes) write_shape_fit(e, f);
+      e << YAML::EndSeq;
+    }
     e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
   }
@@ -201,8 +276,11 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# theta-beta-Mach angle. `pipeline run` evaluates `model` (blunt bodies: the\n"
             "# inverse_mach2 fit); entries are the training points (crossing e, 95% half-width),\n"
             "# granular_angle_deg measured at loo_restitution, the leave-one-out prediction.\n"
-            "# bow_shock (if present): the granular bow shock's out-of-sample relative error under\n"
-            "# this e(M), from `pipeline calibrate --bow-shock-runs`; it widens bow-shock bands.\n"
+            "# bow_shock (if present): the granular bow shock's out-of-sample relative\n"
+            "# error under this e(M), from `pipeline calibrate --bow-shock-runs`; it widens\n"
+            "# bow-shock bands. bow_shock.shapes (if present): a blunt shape's own\n"
+            "# e = c0 + c1/M^2 and its left-out relative error (`--fit-shapes`); bodies of\n"
+            "# that shape use it.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");
@@ -242,6 +320,25 @@ std::optional<double> interpolate_restitution(const CalibrationTable& t, double 
     esum += w * c.restitution;
   }
   return esum / wsum;
+}
+
+double BowShapeFit::evaluate(double mach) const {
+  return std::min(coefficients.at(0) + coefficients.at(1) / (mach * mach), kMaxRestitution);
+}
+
+const BowShapeFit* BowShockScatter::shape(const std::string& name) const {
+  for (const auto& f : shapes)
+    if (f.shape == name) return &f;
+  return nullptr;
+}
+
+MachRange training_mach_range(const BowShapeFit& f) {
+  MachRange r{f.points.front().mach, f.points.front().mach};
+  for (const auto& p : f.points) {
+    r.low = std::min(r.low, p.mach);
+    r.high = std::max(r.high, p.mach);
+  }
+  return r;
 }
 
 std::optional<MachRange> training_mach_range(const CalibrationTable& t) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "pipeline/bow_shape_fit.hpp"
 #include "pipeline/bow_shock_scatter.hpp"
 #include "pipeline/cost_estimate.hpp"
 #include "pipeline/league.hpp"
@@ -108,6 +109,11 @@ int main(int argc, char** argv) {
                       "finished `pipeline run` directories of blunt training bodies (no case study): "
                       "measure the granular bow shock's out-of-sample scatter under the table's e(M) "
                       "and write it into the table; runs nothing, --out not needed");
+    bool fit_shapes = false;
+    calib->add_flag(
+        "--fit-shapes", fit_shapes,
+        "with --bow-shock-runs: also fit each blunt shape's own e(M) on the runs' bodies "
+        "(granular sweeps cached under --out; at least three bodies per shape)");
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,
@@ -191,8 +197,17 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (calib->parsed()) {
+      if (fit_shapes && bow_runs.empty())
+        throw scene::InputError(
+            "calibrate: --fit-shapes needs --bow-shock-runs (the blunt training runs)");
       if (!bow_runs.empty()) {
-        std::cout << pipeline::calibrate_bow_shocks(bow_runs, co.table_path).dump(2) << "\n";
+        pipeline::BowShapeOptions shape_options;
+        shape_options.cache_dir = co.out_dir;
+        shape_options.np = co.np;
+        std::cout << pipeline::calibrate_bow_shocks(bow_runs, co.table_path,
+                                                    fit_shapes ? &shape_options : nullptr)
+                         .dump(2)
+                  << "\n";
         return 0;
       }
       if (!from_points.empty()) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/calibration.hpp"
+
 namespace pipeline {
 
 namespace {
@@ -10,7 +12,6 @@ namespace {
 constexpr double kMaxUsableCiDeg = 5.0;
 // Refined e are rounded to this, and an e within it of a run is that run.
 constexpr double kRefineStep = 1e-4;
-constexpr double kMaxRestitution = 1.0;
 
 double rounded(double e) {
   return std::round(e / kRefineStep) * kRefineStep;

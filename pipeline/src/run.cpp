@@ -149,21 +149,32 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const std::string path = calibration_path(s, table_path);
   if (!fs::exists(path)) return {"no calibration table at " + path + "; restitution left at its default"};
   const auto t = read_calibration(path);
-  const auto e = interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
+  // A blunt shape with its own fit takes it: the wedge e(M) misplaces bow shocks.
+  const auto shape_name = angle_deg ? std::nullopt : scene::bow_shape_class(*s.body);
+  const BowShapeFit* shape = shape_name && t.bow_shock ? t.bow_shock->shape(*shape_name) : nullptr;
+  const auto e = shape ? std::optional<double>(shape->evaluate(s.freestream.mach))
+                       : interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
   // The wedge table's angle scatter says nothing about a bow shock's standoff;
   // the table's bow-shock block, measured on blunt bodies, does.
   const double scatter = angle_deg ? out_of_sample_angle_rms_deg(t) : kNaN;
-  const double bow = !angle_deg && t.bow_shock ? t.bow_shock->relative_rms : kNaN;
+  const double bow = shape                       ? shape->relative_rms
+                     : !angle_deg && t.bow_shock ? t.bow_shock->relative_rms
+                                                 : kNaN;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
-                angle_deg ? ""
-                          : " (by Mach number alone: the table is calibrated on wedges, so this is "
-                            "an extrapolation)");
+                shape ? (" (its own fit for the " + shape->shape + " shape, trained on " +
+                         std::to_string(shape->points.size()) + " bow shocks)")
+                            .c_str()
+                : angle_deg
+                    ? ""
+                    : " (by Mach number alone: the table is calibrated on wedges, so this is "
+                      "an extrapolation)");
   std::string note = buf;
-  const auto range = training_mach_range(t);
+  const auto range =
+      shape ? std::optional<MachRange>(training_mach_range(*shape)) : training_mach_range(t);
   const bool outside = range && !range->contains(s.freestream.mach);
   if (outside) {
     std::snprintf(buf, sizeof buf,
@@ -171,12 +182,24 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
                   "extrapolated%s and this prediction's error is unmeasured (its band may miss the "
                   "gas shock)",
                   s.freestream.mach, range->low, range->high,
-                  *e >= 1.0 ? " past the elastic limit and held at e = 1" : "");
+                  *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
     note += buf;
   }
   // A bow shock's prediction owes its band to the blunt training runs too.
   const double cost = std::isfinite(bow) ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
   return {note, cost, scatter, bow, outside};
+}
+
+nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t seed,
+                                 const std::string& out_dir, int np) {
+  scene::Scene at = s;
+  at.granular.restitution = e;
+  at.granular.restitution_given = true;
+  at.granular.seed = seed;
+  auto r = run_prediction(at, out_dir, np);
+  if (scene::interrupted())
+    throw scene::RunError("calibrate interrupted; finished runs are cached, rerun to resume");
+  return r;
 }
 
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {

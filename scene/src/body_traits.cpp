@@ -59,6 +59,19 @@ std::optional<double> calibration_angle_deg(const BodySpec& b) {
   return std::nullopt;
 }
 
+std::optional<std::string> bow_shape_class(const BodySpec& b) {
+  switch (b.kind) {
+    case BodyKind::disc:
+      return "disc";
+    case BodyKind::apollo:
+      return "apollo";
+    case BodyKind::wedge:
+    case BodyKind::polygon:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 double correlation_nose_radius(const BodySpec& b) {
   switch (b.kind) {
     case BodyKind::disc:

@@ -92,7 +92,10 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   const std::string path = (d / "calibration.yaml").string();
   fs::copy_file(kSource + "/pipeline/calibration.yaml", path);
   auto t = pipeline::read_calibration(path);
-  t.bow_shock = pipeline::BowShockScatter{0.1234567890123, {"disc_M3", "disc_M6"}, 67};
+  t.bow_shock.emplace();
+  t.bow_shock->relative_rms = 0.1234567890123;
+  t.bow_shock->bodies = {"disc_M3", "disc_M6"};
+  t.bow_shock->stations = 67;
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_TRUE(back.bow_shock.has_value());

@@ -48,11 +48,23 @@ TEST(Refuse, SubsonicSceneIsRefused) {
 }
 
 TEST(Refuse, RejudgingOrReplayingWhatWasNeverRunIsAnInputError) {
-  const std::string s = fresh_scene("replay", "name: replay\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
+  const std::string s = fresh_scene(
+      "replay", "name: replay\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   const std::string dir = fs::path(s).parent_path().string();
-  expect_refusal(pipeline("verdict " + dir + "/none"), dir + "/none/summary.json: no such run summary");
-  expect_refusal(pipeline("league " + s + " --out " + dir + "/league --predictor granular --from-runs --docs " + dir +
-                          "/league.md"),
+  expect_refusal(pipeline("verdict " + dir + "/none"),
+                 dir + "/none/summary.json: no such run summary");
+  expect_refusal(pipeline("league " + s + " --out " + dir +
+                          "/league --predictor granular --from-runs --docs " + dir + "/league.md"),
                  dir + "/league/replay/summary_granular.json: no recorded summary");
   EXPECT_FALSE(fs::exists(dir + "/league.md"));
+}
+
+// A blunt shape's fit needs the training runs and a cache for its sweeps,
+// said before any run.
+TEST(Refuse, FittingShapesWithoutTrainingRunsOrCacheIsAnInputError) {
+  expect_refusal(pipeline("calibrate --fit-shapes --out /nonexistent/cache"),
+                 "--fit-shapes needs --bow-shock-runs");
+  const std::string dir = test_support::fresh_dir("pipeline_refuse_shapes");
+  expect_refusal(pipeline("calibrate --fit-shapes --bow-shock-runs " + dir + "/a " + dir + "/b"),
+                 dir + "/a: --bow-shock-runs: no such directory");
 }

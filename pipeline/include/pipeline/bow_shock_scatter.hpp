@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pipeline/calibration.hpp"
+#include "scene/scene.hpp"
 
 namespace pipeline {
 
@@ -25,6 +26,17 @@ struct StationErrors {
 // Fewer than kMinStations common stations: InputError naming the files.
 StationErrors station_errors(const std::string& granular_csv, const std::string& gas_csv);
 
+// A blunt training body: a finished `pipeline run` of it with the granular
+// predictor, checked as below, and the gas shock it is compared with (the
+// finest steady uniform grid's shockfit stations and summary).
+struct BowTrainingRun {
+  scene::Scene scene;
+  std::string run_dir;
+  std::string gas_csv, gas_summary;
+  double predictor_cpu_seconds = scene::kNaN, grid_cpu_seconds = scene::kNaN;
+};
+BowTrainingRun bow_training_run(const std::string& run_dir);
+
 // A finished `pipeline run` of a blunt body with the granular predictor:
 // RUNDIR/shockfit/shock.csv against the finest steady uniform grid's
 // RUNDIR/cfd/uniform_h<level>/shockfit/shock.csv. InputError (naming the
@@ -38,7 +50,11 @@ BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies);
 // `pipeline calibrate --bow-shock-runs RUNDIR...`: measures the scatter on
 // the runs and writes it into the table at table_path (default: the
 // built-in one), keeping everything else; runs nothing. Returns the figures.
+// With `shapes`, it also fits each blunt shape's own e(M) on the runs' bodies
+// (granular runs, cached under shapes->cache_dir; bow_shape_fit.hpp).
+struct BowShapeOptions;
 nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
-                                    const std::string& table_path);
+                                    const std::string& table_path,
+                                    const BowShapeOptions* shapes = nullptr);
 
 }  // namespace pipeline

@@ -3,6 +3,7 @@
 // (Mach, angle) the coefficient of restitution at which the granular shock
 // angle equals the ideal-gas (gamma 1.4) theta-beta-Mach angle, and the
 // smooth model e(M[, theta]) fitted to them (docs/calibration.md).
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,14 @@
 #include "scene/units.hpp"
 
 namespace pipeline {
+
+// e = 1 is the elastic limit: a fit extrapolated below the training Mach
+// numbers (c1 > 0) can exceed it, which no disk collision can.
+inline constexpr double kMaxRestitution = 1.0;
+// Out-of-sample runs use the scene's seed plus this offset; the fits'
+// sweeps used seed .. seed + replicas - 1, so an offset above the replica
+// count gives replicas no sweep has seen.
+inline constexpr std::uint64_t kLeaveOneOutSeedOffset = 1000;
 
 struct CalibrationEntry {
   double mach = 0, angle_deg = 0;
@@ -32,6 +41,32 @@ struct CalibrationEntry {
 // each body's own RMS over its stations counting once (a body's stations
 // move together). Measured after the e(M) fit it belongs to: a new fit
 // drops it (docs/calibration.md, "The bow shock's band").
+// A blunt shape's own restitution, e = c0 + c1/M^2: one e(M) does not
+// serve wedges, discs and capsules alike (the wedge fit stands a disc's bow
+// shock too far off at Mach 3 and too close at Mach 6, Apollo's too close at
+// every Mach number). Fitted, per shape, on the training bodies' crossings:
+// the e at which the granular bow shock's mean station distance equals the
+// gas's (docs/calibration.md, "A restitution per blunt shape").
+struct BowShapePoint {
+  std::string body;  // the training scene's name
+  double mach = 0;
+  double restitution = 1, restitution_ci = 0;  // the crossing and its 95% half-width
+  // e predicted by the shape's fit without this body, and the granular bow
+  // shock measured there (fresh seed) against the gas's: mean and RMS
+  // relative station error, and the stagnation standoff's relative error.
+  double loo_restitution = scene::kNaN;
+  double loo_mean = scene::kNaN, loo_rms = scene::kNaN, loo_standoff = scene::kNaN;
+};
+struct BowShapeFit {
+  std::string shape;                 // scene::bow_shape_class of the body
+  std::vector<double> coefficients;  // c0, c1
+  // RMS over the shape's bodies of their left-out station RMS: the band's
+  // relative scatter for bodies of this shape.
+  double relative_rms = scene::kNaN;
+  std::vector<BowShapePoint> points;
+  double evaluate(double mach) const;  // clamped to e <= kMaxRestitution
+};
+
 struct BowShockScatter {
   double relative_rms = scene::kNaN;
   std::vector<std::string> bodies;  // the training scenes' names
@@ -39,6 +74,8 @@ struct BowShockScatter {
   // What the training runs cost (their predictors and the uniform grids
   // compared with); NaN when not recorded.
   double cpu_seconds = scene::kNaN;
+  std::vector<BowShapeFit> shapes;  // empty: every blunt body takes the wedge e(M)
+  const BowShapeFit* shape(const std::string& name) const;
 };
 
 struct CalibrationTable {
@@ -83,5 +120,7 @@ struct MachRange {
   bool contains(double mach) const { return mach >= low && mach <= high; }
 };
 std::optional<MachRange> training_mach_range(const CalibrationTable& t);
+// The same for a shape's fit: its training bodies' Mach numbers.
+MachRange training_mach_range(const BowShapeFit& f);
 
 }  // namespace pipeline

@@ -2,6 +2,7 @@
 // `pipeline run`: a shock predictor (granular gas + shockfit by default) ->
 // meshgen (clustered and uniform families) -> rhoCentralFoam on each grid ->
 // verdict and report.
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -52,6 +53,10 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o);
 // merged with granular's wall time.
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np,
                               bool force = false);
+// The same at restitution e and seed (the calibrations' sweeps); RunError
+// when interrupted (finished runs stay cached, so a rerun resumes).
+nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t seed,
+                                 const std::string& out_dir, int np);
 
 // The named predictor's shock for the scene, its stages cached under
 // out_dir (granular: out_dir itself; others: out_dir/predict/<name>).

@@ -3,6 +3,7 @@
 // Every switch over BodyKind here has no default: a new kind does not
 // compile until each question has its answer.
 #include <optional>
+#include <string>
 
 #include "scene/scene.hpp"
 
@@ -35,6 +36,12 @@ std::optional<double> straight_ramp_length(const BodySpec& b);
 // table is calibrated on wedges against their exact shock angle. nullopt
 // for bodies it was not calibrated on (they take it by Mach number alone).
 std::optional<double> calibration_angle_deg(const BodySpec& b);
+
+// The shape class a blunt body's own restitution fit is indexed by (the
+// calibration table's bow_shock.shapes): bodies of one kind share their
+// nose's form, so their granular bow shocks share one e(M). nullopt for
+// wedges (the wedge fit is theirs) and polygons (no two need share a form).
+std::optional<std::string> bow_shape_class(const BodySpec& b);
 
 // Radius a bow-shock correlation (Billig's cylinder) is evaluated with, in
 // scene units: the disc's radius; for other bodies, half the body's frontal

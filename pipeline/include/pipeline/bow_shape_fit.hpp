@@ -1,0 +1,46 @@
+#pragma once
+// A restitution per blunt shape: on each training body, the e at which the
+// granular bow shock stands off as far as the gas's (shockfit's standoff,
+// the fitted shock vertex's distance from the nose), then e = c0 + c1/M^2
+// fitted per shape class and judged by leaving each body out
+// (docs/calibration.md, "A restitution per blunt shape").
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pipeline/bow_shock_scatter.hpp"
+#include "pipeline/calibration.hpp"
+
+namespace pipeline {
+
+struct BowShapeOptions {
+  std::string cache_dir;  // granular runs, by body and e (a rerun resumes)
+  int np = 1;
+  // The sweep around the wedge table's e(M) at the body's Mach number;
+  // then `refinements` runs bisect the bracketing interval.
+  std::vector<double> offsets{-0.015, -0.01, -0.005, 0.0, 0.005, 0.01};
+  int refinements = 2;
+};
+
+// e = c0 + c1/M^2 through the crossings, and each point's left-out e.
+// nullopt with fewer than three points (two leave no left-out fit) or a
+// singular design (every point at one Mach number).
+std::optional<BowShapeFit> fit_bow_shape(const std::string& shape,
+                                         const std::vector<BowShapePoint>& points);
+
+struct BowShapeResult {
+  // Shapes with at least three bodies crossed whose left-out station RMS
+  // beats the wedge e(M)'s on the same bodies (the others are reported only).
+  std::vector<BowShapeFit> fits;
+  nlohmann::json shapes = nlohmann::json::array();  // every shape fitted: its RMS, the baseline's
+  double cpu_seconds = 0;                           // the granular runs this call made
+  nlohmann::json report;                            // per body: sweep, crossing, left-out check
+};
+// Sweeps, fits and checks every shape the runs hold; a shape with fewer
+// than three crossed bodies, or whose fit does not beat the wedge e(M) out
+// of sample, gets none (said in the report).
+BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const CalibrationTable& t,
+                              const BowShapeOptions& o);
+
+}  // namespace pipeline

@@ -147,6 +147,22 @@ void check_left_out(BowShapePoint& p, const BowTrainingRun& run, const BowShapeO
 }
 }  // namespace
 
+StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationTable& t,
+                                   const BowShapeOptions& o) {
+  if (o.cache_dir.empty())
+    throw scene::InputError("calibrate: --fit-shapes needs --out (the granular runs' cache)");
+  const double e = quantised_restitution(
+      interpolate_restitution(t, run.scene.freestream.mach, kNaN).value_or(kMaxRestitution));
+  if (std::abs(e - run.scene.granular.restitution) < 0.5 * kRestitutionQuantum)
+    return run_station_errors(run.run_dir);  // the run itself is at the wedge e(M)
+  const std::string dir = e_dir(o.cache_dir, run.scene.name, "wedge_e", e);
+  const auto m = run_at(run.scene, e, run.scene.granular.seed, dir, o.np);
+  StationErrors st = station_errors(dir + "/shockfit/shock.csv", run.gas_csv);
+  st.body = run.scene.name;
+  st.cpu_seconds = m.cpu + run.grid_cpu_seconds;
+  return st;
+}
+
 std::optional<BowShapeFit> fit_bow_shape(const std::string& shape,
                                          const std::vector<BowShapePoint>& points) {
   if (points.size() < kMinShapeBodies) return std::nullopt;
@@ -211,7 +227,7 @@ BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const Cal
       check_left_out(fit->points[i], *crossed[i].run, o, out.cpu_seconds,
                      body_report[fit->points[i].body]);
       ss += fit->points[i].loo_rms * fit->points[i].loo_rms;
-      const double wedge_rms = run_station_errors(crossed[i].run->run_dir).rms;
+      const double wedge_rms = wedge_station_errors(*crossed[i].run, t, o).rms;
       ss_wedge += wedge_rms * wedge_rms;
     }
     const double n = static_cast<double>(fit->points.size());

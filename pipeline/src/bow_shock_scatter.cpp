@@ -26,7 +26,7 @@ constexpr double kSameStation = 1e-9;
 // Fewer common stations than this say nothing about a shock's shape.
 constexpr std::size_t kMinStations = 3;
 // A resolved scene's e is the table's, rounded to 1e-6 when applied.
-constexpr double kSameRestitution = 0.5e-6 + 1e-12;
+constexpr double kSameRestitution = 0.5 * kRestitutionQuantum + 1e-12;
 
 bool same_point(scene::Vec2 a, scene::Vec2 b) {
   if (!std::isfinite(a.x) || !std::isfinite(b.x)) return true;  // a file without surface columns
@@ -150,8 +150,15 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
     if (!std::filesystem::is_directory(dir))
       throw scene::InputError(
           dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
-    check_table_restitution(dir, table, path);
-    bodies.push_back(run_station_errors(dir));
+    // A run made at its shape's own e (a table that has one) still holds the
+    // gas shock; with the sweeps' cache its body is rerun at the wedge e(M)
+    // when needed.
+    if (shapes) {
+      bodies.push_back(wedge_station_errors(bow_training_run(dir), table, *shapes));
+    } else {
+      check_table_restitution(dir, table, path);
+      bodies.push_back(run_station_errors(dir));
+    }
     const auto& b = bodies.back();
     per_body.push_back({{"body", b.body},
                         {"run", dir},

@@ -39,10 +39,8 @@ constexpr double kTargetGamma = 1.4;
 constexpr std::uint64_t kCaseStudySeedOffset = 2000;
 // e is rounded like `pipeline run` rounds the table's value, so a case study
 // here runs at the e the pipeline would use.
-constexpr double kRestitutionStep = 1e-6;
-
 double rounded_restitution(double e) {
-  return std::min(1.0, std::round(e / kRestitutionStep) * kRestitutionStep);
+  return std::min(kMaxRestitution, quantised_restitution(e));
 }
 
 double gas_angle_deg(const scene::Scene& s, const std::string& origin) {

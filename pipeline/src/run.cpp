@@ -38,10 +38,6 @@ namespace {
 
 using scene::kDeg;
 using scene::kNaN;
-// Digits kept of a calibrated restitution: the resolved scene echoes it
-// exactly, so rerunning the resolved scene reproduces the run bit for bit.
-constexpr double kRestitutionQuantum = 1e-6;
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -155,7 +151,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const auto e = shape ? std::optional<double>(shape->evaluate(s.freestream.mach))
                        : interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return {"", t.cpu_seconds};
-  s.granular.restitution = std::round(*e / kRestitutionQuantum) * kRestitutionQuantum;
+  s.granular.restitution = quantised_restitution(*e);
   // The wedge table's angle scatter says nothing about a bow shock's standoff;
   // the table's bow-shock block, measured on blunt bodies, does.
   const double scatter = angle_deg ? out_of_sample_angle_rms_deg(t) : kNaN;

@@ -29,6 +29,13 @@ struct BowShapeOptions {
 std::optional<BowShapeFit> fit_bow_shape(const std::string& shape,
                                          const std::vector<BowShapePoint>& points);
 
+// The pooled scatter's measure for a training run: its own granular stations
+// against its gas shock when it ran at the wedge table's e(M); else (a run
+// made at its shape's own e) the body rerun at the wedge e(M) (cached like
+// the sweeps).
+StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationTable& t,
+                                   const BowShapeOptions& o);
+
 struct BowShapeResult {
   // Shapes with at least three bodies crossed whose left-out station RMS
   // beats the wedge e(M)'s on the same bodies (the others are reported only).

@@ -3,6 +3,7 @@
 // (Mach, angle) the coefficient of restitution at which the granular shock
 // angle equals the ideal-gas (gamma 1.4) theta-beta-Mach angle, and the
 // smooth model e(M[, theta]) fitted to them (docs/calibration.md).
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,6 +17,12 @@ namespace pipeline {
 // e = 1 is the elastic limit: a fit extrapolated below the training Mach
 // numbers (c1 > 0) can exceed it, which no disk collision can.
 inline constexpr double kMaxRestitution = 1.0;
+// A table's e is applied rounded to this: the resolved scene echoes it
+// exactly, so rerunning the resolved scene reproduces the run bit for bit.
+inline constexpr double kRestitutionQuantum = 1e-6;
+inline double quantised_restitution(double e) {
+  return std::round(e / kRestitutionQuantum) * kRestitutionQuantum;
+}
 // Out-of-sample runs use the scene's seed plus this offset; the fits'
 // sweeps used seed .. seed + replicas - 1, so an offset above the replica
 // count gives replicas no sweep has seen.

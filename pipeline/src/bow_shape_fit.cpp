@@ -23,9 +23,6 @@ using scene::kNaN;
 constexpr double kSweepStep = 1e-4;
 // The crossing is where the granular standoff equals the gas's.
 constexpr double kSameStandoff = 1.0;
-// A shape needs more crossed bodies than e = c0 + c1/M^2 has coefficients,
-// so that each body's left-out fit exists.
-constexpr std::size_t kMinShapeBodies = 3;
 
 double rounded(double e) {
   return std::min(kMaxRestitution, std::round(e / kSweepStep) * kSweepStep);
@@ -74,6 +71,7 @@ Measured run_at(const scene::Scene& base, double e, std::uint64_t seed, const st
 struct Crossed {
   BowShapePoint point;
   const BowTrainingRun* run = nullptr;
+  double wedge_rms = kNaN;  // the body's station RMS at the wedge e(M), the baseline
 };
 
 // The sweep around the wedge e(M), then bisection of the bracket.
@@ -153,7 +151,7 @@ StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationT
     throw scene::InputError("calibrate: --fit-shapes needs --out (the granular runs' cache)");
   const double e = quantised_restitution(
       interpolate_restitution(t, run.scene.freestream.mach, kNaN).value_or(kMaxRestitution));
-  if (std::abs(e - run.scene.granular.restitution) < 0.5 * kRestitutionQuantum)
+  if (ran_at_table_restitution(run.scene, t))
     return run_station_errors(run.run_dir);  // the run itself is at the wedge e(M)
   const std::string dir = e_dir(o.cache_dir, run.scene.name, "wedge_e", e);
   const auto m = run_at(run.scene, e, run.scene.granular.seed, dir, o.np);
@@ -165,7 +163,7 @@ StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationT
 
 std::optional<BowShapeFit> fit_bow_shape(const std::string& shape,
                                          const std::vector<BowShapePoint>& points) {
-  if (points.size() < kMinShapeBodies) return std::nullopt;
+  if (points.size() <= kBowShapeCoefficients) return std::nullopt;
   std::vector<RestitutionPoint> rp;
   for (const auto& p : points) rp.push_back({p.mach, 0.0, p.restitution, p.restitution_ci});
   const auto fit = fit_restitution(rp, RestitutionModel::inverse_mach2);
@@ -182,8 +180,9 @@ std::optional<BowShapeFit> fit_bow_shape(const std::string& shape,
   return f;
 }
 
-BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const CalibrationTable& t,
-                              const BowShapeOptions& o) {
+BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs,
+                              const std::vector<StationErrors>& wedge_errors,
+                              const CalibrationTable& t, const BowShapeOptions& o) {
   if (o.cache_dir.empty())
     throw scene::InputError("calibrate: --fit-shapes needs --out (the granular runs' cache)");
   BowShapeResult out;
@@ -198,7 +197,8 @@ BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const Cal
                   true);
   std::map<std::string, std::vector<Crossed>> by_shape;
   std::map<std::string, nlohmann::json> body_report;
-  for (const auto& run : runs) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const BowTrainingRun& run = runs[k];
     const auto shape = scene::bow_shape_class(*run.scene.body);
     nlohmann::json r;
     if (!shape) {
@@ -207,7 +207,10 @@ BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const Cal
                             {"note", "no shape class (polygons keep the wedge e(M))"}});
       continue;
     }
-    if (const auto c = sweep_body(run, t, o, out.cpu_seconds, r)) by_shape[*shape].push_back(*c);
+    if (auto c = sweep_body(run, t, o, out.cpu_seconds, r)) {
+      c->wedge_rms = wedge_errors.at(k).rms;
+      by_shape[*shape].push_back(*c);
+    }
     r["shape"] = *shape;
     body_report[run.scene.name] = r;
   }
@@ -227,8 +230,7 @@ BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const Cal
       check_left_out(fit->points[i], *crossed[i].run, o, out.cpu_seconds,
                      body_report[fit->points[i].body]);
       ss += fit->points[i].loo_rms * fit->points[i].loo_rms;
-      const double wedge_rms = wedge_station_errors(*crossed[i].run, t, o).rms;
-      ss_wedge += wedge_rms * wedge_rms;
+      ss_wedge += crossed[i].wedge_rms * crossed[i].wedge_rms;
     }
     const double n = static_cast<double>(fit->points.size());
     fit->relative_rms = std::sqrt(ss / n);

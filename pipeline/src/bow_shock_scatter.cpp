@@ -50,13 +50,18 @@ void check_table_restitution(const std::string& run_dir, const CalibrationTable&
                              const std::string& table_path) {
   const scene::Scene ran = scene::load_scene(run_dir + "/scene.resolved.yaml");
   const double e = interpolate_restitution(t, ran.freestream.mach, kNaN).value_or(kNaN);
-  if (!(std::abs(e - ran.granular.restitution) <= kSameRestitution))
+  if (!ran_at_table_restitution(ran, t))
     throw scene::InputError(run_dir + "/scene.resolved.yaml: key 'granular.restitution': " +
                             std::to_string(ran.granular.restitution) + " is not the table's e(M) " +
                             std::to_string(e) + " (" + table_path +
                             "); rerun the body with that table and no restitution of its own");
 }
 }  // namespace
+
+bool ran_at_table_restitution(const scene::Scene& ran, const CalibrationTable& t) {
+  const double e = interpolate_restitution(t, ran.freestream.mach, kNaN).value_or(kNaN);
+  return std::abs(e - ran.granular.restitution) <= kSameRestitution;
+}
 
 StationErrors station_errors(const std::string& granular_csv, const std::string& gas_csv) {
   const auto g = scene::read_shock_csv(granular_csv).rows;
@@ -145,6 +150,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   CalibrationTable table =
       read_calibration(path);  // a missing or malformed table fails before anything
   std::vector<StationErrors> bodies;
+  std::vector<BowTrainingRun> runs;
   nlohmann::json per_body = nlohmann::json::array();
   for (const auto& dir : run_dirs) {
     if (!std::filesystem::is_directory(dir))
@@ -154,7 +160,8 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
     // gas shock; with the sweeps' cache its body is rerun at the wedge e(M)
     // when needed.
     if (shapes) {
-      bodies.push_back(wedge_station_errors(bow_training_run(dir), table, *shapes));
+      runs.push_back(bow_training_run(dir));
+      bodies.push_back(wedge_station_errors(runs.back(), table, *shapes));
     } else {
       check_table_restitution(dir, table, path);
       bodies.push_back(run_station_errors(dir));
@@ -173,9 +180,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   BowShockScatter scatter = pooled_scatter(bodies);
   nlohmann::json shape_report = nlohmann::json::array();
   if (shapes) {
-    std::vector<BowTrainingRun> runs;
-    for (const auto& dir : run_dirs) runs.push_back(bow_training_run(dir));
-    const BowShapeResult fitted = fit_bow_shapes(runs, table, *shapes);
+    const BowShapeResult fitted = fit_bow_shapes(runs, bodies, table, *shapes);
     scatter.shapes = fitted.fits;
     scatter.cpu_seconds += fitted.cpu_seconds;
     shape_report = {{"bodies", fitted.report}, {"fits", fitted.shapes}};

@@ -59,17 +59,13 @@ double optional_number(const YAML::Node& n, const char* key, double fallback) {
   return n[key] ? n[key].as<double>() : fallback;
 }
 
-// A shape's fit needs more bodies than coefficients, else it has no
-// left-out error to widen its band with.
-constexpr std::size_t kShapeCoefficients = 2;
-
 BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const std::string& key) {
   if (!n.IsMap() || !n["shape"] || !n["coefficients"] || !n["relative_rms"] || !n["points"])
     bad(path, n, key, "expected a map {shape, coefficients, relative_rms, points}");
   BowShapeFit f;
   f.shape = n["shape"].as<std::string>();
   const auto c = n["coefficients"];
-  if (!c.IsSequence() || c.size() != kShapeCoefficients)
+  if (!c.IsSequence() || c.size() != kBowShapeCoefficients)
     bad(path, c, key + ".coefficients", "expected [c0, c1] of e = c0 + c1/M^2");
   for (const auto& x : c) {
     const double v = x.as<double>();
@@ -80,9 +76,9 @@ BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const s
   if (!(std::isfinite(f.relative_rms) && f.relative_rms >= 0))
     bad(path, n["relative_rms"], key + ".relative_rms", "expected a finite number >= 0");
   const auto pts = n["points"];
-  if (!pts.IsSequence() || pts.size() <= kShapeCoefficients)
+  if (!pts.IsSequence() || pts.size() <= kBowShapeCoefficients)
     bad(path, pts, key + ".points",
-        "expected at least " + std::to_string(kShapeCoefficients + 1) + " training bodies");
+        "expected at least " + std::to_string(kBowShapeCoefficients + 1) + " training bodies");
   for (const auto& q : pts) {
     if (!q.IsMap() || !q["body"] || !q["mach"] || !q["restitution"])
       bad(path, q, key + ".points", "expected maps {body, mach, restitution, ...}");

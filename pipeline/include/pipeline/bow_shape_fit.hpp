@@ -47,7 +47,10 @@ struct BowShapeResult {
 // Sweeps, fits and checks every shape the runs hold; a shape with fewer
 // than three crossed bodies, or whose fit does not beat the wedge e(M) out
 // of sample, gets none (said in the report).
-BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs, const CalibrationTable& t,
-                              const BowShapeOptions& o);
+// `wedge_errors[k]` is runs[k]'s wedge_station_errors (the baseline a
+// shape's fit must beat), measured once by the caller for the pooled scatter.
+BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs,
+                              const std::vector<StationErrors>& wedge_errors,
+                              const CalibrationTable& t, const BowShapeOptions& o);
 
 }  // namespace pipeline

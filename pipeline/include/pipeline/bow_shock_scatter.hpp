@@ -36,6 +36,9 @@ struct BowTrainingRun {
   double predictor_cpu_seconds = scene::kNaN, grid_cpu_seconds = scene::kNaN;
 };
 BowTrainingRun bow_training_run(const std::string& run_dir);
+// Whether a run's resolved scene took the table's wedge e(M) (as applied,
+// rounded to kRestitutionQuantum): the e the pooled scatter belongs to.
+bool ran_at_table_restitution(const scene::Scene& ran, const CalibrationTable& t);
 
 // A finished `pipeline run` of a blunt body with the granular predictor:
 // RUNDIR/shockfit/shock.csv against the finest steady uniform grid's

@@ -41,26 +41,21 @@ struct CalibrationEntry {
   double loo_restitution = scene::kNaN;
 };
 
-// The granular bow shock's out-of-sample error under this table's e(M):
-// on training blunt bodies (none a case study), the relative error of each
-// shockfit station's shock distance against the gas's (the finest steady
-// uniform grid of a `pipeline run` of the body). The RMS is over bodies,
-// each body's own RMS over its stations counting once (a body's stations
-// move together). Measured after the e(M) fit it belongs to: a new fit
-// drops it (docs/calibration.md, "The bow shock's band").
 // A blunt shape's own restitution, e = c0 + c1/M^2: one e(M) does not
 // serve wedges, discs and capsules alike (the wedge fit stands a disc's bow
 // shock too far off at Mach 3 and too close at Mach 6, Apollo's too close at
 // every Mach number). Fitted, per shape, on the training bodies' crossings:
-// the e at which the granular bow shock's mean station distance equals the
-// gas's (docs/calibration.md, "A restitution per blunt shape").
+// the e at which the granular standoff equals the gas's (docs/calibration.md,
+// "A restitution per blunt shape"). Two coefficients; a fit needs one body
+// more, so that each body's left-out fit exists.
+inline constexpr std::size_t kBowShapeCoefficients = 2;
 struct BowShapePoint {
   std::string body;  // the training scene's name
   double mach = 0;
   double restitution = 1, restitution_ci = 0;  // the crossing and its 95% half-width
   // e predicted by the shape's fit without this body, and the granular bow
   // shock measured there (fresh seed) against the gas's: mean and RMS
-  // relative station error, and the stagnation standoff's relative error.
+  // relative station error, and the standoff's relative error.
   double loo_restitution = scene::kNaN;
   double loo_mean = scene::kNaN, loo_rms = scene::kNaN, loo_standoff = scene::kNaN;
 };
@@ -74,6 +69,13 @@ struct BowShapeFit {
   double evaluate(double mach) const;  // clamped to e <= kMaxRestitution
 };
 
+// The granular bow shock's out-of-sample error under this table's e(M):
+// on training blunt bodies (none a case study), the relative error of each
+// shockfit station's shock distance against the gas's (the finest steady
+// uniform grid of a `pipeline run` of the body). The RMS is over bodies,
+// each body's own RMS over its stations counting once (a body's stations
+// move together). Measured after the e(M) fit it belongs to: a new fit
+// drops it (docs/calibration.md, "The bow shock's band").
 struct BowShockScatter {
   double relative_rms = scene::kNaN;
   std::vector<std::string> bodies;  // the training scenes' names

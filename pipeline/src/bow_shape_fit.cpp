@@ -19,14 +19,8 @@ namespace pipeline {
 
 namespace {
 using scene::kNaN;
-// Swept e are rounded to this (the cache directories are named by e).
-constexpr double kSweepStep = 1e-4;
 // The crossing is where the granular standoff equals the gas's.
 constexpr double kSameStandoff = 1.0;
-
-double rounded(double e) {
-  return std::min(kMaxRestitution, std::round(e / kSweepStep) * kSweepStep);
-}
 
 std::string e_dir(const std::string& root, const std::string& body, const char* what, double e) {
   std::ostringstream d;
@@ -99,7 +93,7 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
                     std::to_string(gas));
   };
   for (const double off : o.offsets) {
-    const double e = rounded(e_wedge + off);
+    const double e = swept_restitution(e_wedge + off);
     if (std::none_of(pts.begin(), pts.end(), [e](const SweepPoint& p) { return p.e == e; }))
       measure(e);
   }
@@ -128,7 +122,7 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
 // The left-out e at a fresh seed, against the gas shock.
 void check_left_out(BowShapePoint& p, const BowTrainingRun& run, const BowShapeOptions& o,
                     double& cpu, nlohmann::json& report) {
-  const double e = rounded(p.loo_restitution);
+  const double e = swept_restitution(p.loo_restitution);
   const std::string dir = e_dir(o.cache_dir, run.scene.name, "loo_e", e);
   const auto m = run_at(run.scene, e, run.scene.granular.seed + kLeaveOneOutSeedOffset, dir, o.np);
   cpu += m.cpu;

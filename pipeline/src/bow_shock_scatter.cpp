@@ -185,6 +185,8 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
     scatter.cpu_seconds += fitted.cpu_seconds;
     shape_report = {{"bodies", fitted.report}, {"fits", fitted.shapes}};
   }
+  // The law the bodies ran at travels with what was measured under it.
+  if (const RestitutionFit* law = blunt_restitution_law(table)) scatter.restitution_law = *law;
   table.bow_shock = scatter;
   write_calibration(table, path);
   return {{"table", path},

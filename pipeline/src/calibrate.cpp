@@ -84,6 +84,13 @@ void check_seed_room(const scene::Scene& s, const std::string& origin) {
         " replicas (the out-of-sample seeds start that far above granular.seed)");
 }
 
+// Read before any run, so a malformed table stops the calibration before it
+// costs anything.
+std::optional<BowShockScatter> kept_bow_shock(const std::string& table_path) {
+  if (!fs::is_regular_file(table_path)) return std::nullopt;
+  return bow_shock_kept_by_wedge_fit(read_calibration(table_path));
+}
+
 struct Training {
   scene::Scene scene;
   std::string origin;
@@ -131,6 +138,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   const auto training = training_set(o, case_points);
 
   const std::string table_path = o.table_path.empty() ? builtin_calibration_path() : o.table_path;
+  const auto bow_shock = kept_bow_shock(table_path);
   scene::make_dirs(o.out_dir);
   const std::size_t n_runs =
       training.size() *
@@ -312,6 +320,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       {"model", model_key(fit.model)},
       {"candidates", candidates},
       {"case_studies", case_rows},
+      {"bow_shock_kept", bow_shock.has_value()},
       {"seed_offsets",
        {{"leave_one_out", kLeaveOneOutSeedOffset}, {"case_studies", kCaseStudySeedOffset}}},
       {"cpu_seconds",
@@ -322,6 +331,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
 
   plot_png(plot, o.out_dir + "/calibration.png");
   table.cpu_seconds = cpu_seconds() - cpu0;
+  table.bow_shock = bow_shock;
   write_calibration(table, table_path);
   scene::write_json_atomic(o.out_dir + "/calibration.json", out);
   scene::write_file_atomic(

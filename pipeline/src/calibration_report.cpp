@@ -136,6 +136,9 @@ std::string calibration_markdown(const nlohmann::json& c) {
      << fixed(num(cpu, "out_of_sample"), 0) << " s for the out-of-sample runs, "
      << fixed(num(cpu, "total"), 0) << " s in all (cached runs count ~0); wall "
      << fixed(num(c, "wall_seconds"), 0) << " s.\n";
+  if (c.value("bow_shock_kept", false))
+    md << "\nThe table's bow_shock block (and its shape fits) is kept: it records the e(M) its "
+          "blunt bodies ran at, and blunt bodies keep that law.\n";
   return md.str();
 }
 

@@ -36,9 +36,11 @@ RestitutionFit read_fit(const std::string& path, const YAML::Node& n, const std:
   if (!n.IsMap()) bad(path, n, key, "expected a map {model, coefficients, residual_sd, loo_rms}");
   RestitutionFit f;
   const auto m = model_from_key(n["model"] ? n["model"].as<std::string>() : "");
-  if (!m)
-    bad(path, n, key + ".model",
-        "unknown model (one of constant, inverse_mach2, inverse_mach2_angle)");
+  if (!m) {
+    std::string known;
+    for (const auto k : kRestitutionModels) known += (known.empty() ? "" : ", ") + model_key(k);
+    bad(path, n, key + ".model", "unknown model (one of " + known + ")");
+  }
   f.model = *m;
   const auto c = n["coefficients"];
   if (!c || !c.IsSequence() || c.size() != parameter_count(f.model))
@@ -96,6 +98,14 @@ BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const s
     f.points.push_back(p);
   }
   return f;
+}
+
+void write_fit(YAML::Emitter& e, const RestitutionFit& f) {
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "model" << YAML::Value << model_key(f.model)
+    << YAML::Key << "formula" << YAML::Value << YAML::DoubleQuoted << model_formula(f.model)
+    << YAML::Key << "coefficients" << YAML::Value << YAML::Flow << f.coefficients << YAML::Key
+    << "residual_sd" << YAML::Value << f.residual_sd << YAML::Key << "loo_rms" << YAML::Value
+    << f.loo_rms << YAML::EndMap;
 }
 
 void write_shape_fit(YAML::Emitter& e, const BowShapeFit& f) {
@@ -193,6 +203,12 @@ CalibrationTable read_calibration(const std::string& path) {
           w.shapes.push_back(
               read_shape_fit(path, shapes[i], "bow_shock.shapes[" + std::to_string(i) + "]"));
       }
+      if (const auto law = b["restitution_law"]) {
+        w.restitution_law = read_fit(path, law, "bow_shock.restitution_law");
+        if (uses_angle(w.restitution_law->model))
+          bad(path, law, "bow_shock.restitution_law",
+              "blunt bodies have no wedge angle: expected a Mach-only model");
+      }
       t.bow_shock = w;
     }
     if (const auto tp = root["training_points"]) {
@@ -221,13 +237,7 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
   if (t.model) {
     e << YAML::Key << "model" << YAML::Value << model_key(*t.model);
     e << YAML::Key << "fits" << YAML::Value << YAML::BeginSeq;
-    for (const auto& f : t.fits) {
-      e << YAML::Flow << YAML::BeginMap << YAML::Key << "model" << YAML::Value << model_key(f.model)
-        << YAML::Key << "formula" << YAML::Value << YAML::DoubleQuoted << model_formula(f.model)
-        << YAML::Key << "coefficients" << YAML::Value << YAML::Flow << f.coefficients << YAML::Key
-        << "residual_sd" << YAML::Value << f.residual_sd << YAML::Key << "loo_rms" << YAML::Value
-        << f.loo_rms << YAML::EndMap;
-    }
+    for (const auto& f : t.fits) write_fit(e, f);
     e << YAML::EndSeq;
   }
   e.SetDoublePrecision(kEntryDigits);
@@ -245,6 +255,10 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
       << t.bow_shock->stations;
     if (std::isfinite(t.bow_shock->cpu_seconds))
       e << YAML::Key << "cpu_seconds" << YAML::Value << t.bow_shock->cpu_seconds;
+    if (const auto& law = t.bow_shock->restitution_law) {
+      e << YAML::Key << "restitution_law" << YAML::Value;
+      write_fit(e, *law);
+    }
     if (!t.bow_shock->shapes.empty()) {
       e << YAML::Key << "shapes" << YAML::Value << YAML::BeginSeq;
       for (const auto& f : t.bow_shock->shapes) write_shape_fit(e, f);
@@ -270,11 +284,12 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
           ? "# Written by `pipeline calibrate` (docs/calibration.md): restitution e(M[, theta])\n"
             "# fitted to training wedges at which the granular shock angle equals the ideal-gas\n"
             "# theta-beta-Mach angle. `pipeline run` evaluates `model` (blunt bodies: the\n"
-            "# inverse_mach2 fit); entries are the training points (crossing e, 95% half-width),\n"
-            "# granular_angle_deg measured at loo_restitution, the leave-one-out prediction.\n"
+            "# bow_shock.restitution_law, else a Mach-only fit); entries are the training\n"
+            "# points (crossing e, 95% half-width), granular_angle_deg measured at\n"
+            "# loo_restitution, the leave-one-out prediction.\n"
             "# bow_shock (if present): the granular bow shock's out-of-sample relative\n"
-            "# error under this e(M), from `pipeline calibrate --bow-shock-runs`; it widens\n"
-            "# bow-shock bands. bow_shock.shapes (if present): a blunt shape's own\n"
+            "# error under its restitution_law, from `pipeline calibrate --bow-shock-runs`;\n"
+            "# it widens bow-shock bands. bow_shock.shapes (if present): a blunt shape's own\n"
             "# e = c0 + c1/M^2 and its left-out relative error (`--fit-shapes`); bodies of\n"
             "# that shape use it.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
@@ -294,13 +309,21 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
   return n >= 2 ? std::sqrt(ss / n) : kNaN;
 }
 
+std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const CalibrationTable& old) {
+  if (old.bow_shock && old.bow_shock->restitution_law) return old.bow_shock;
+  return std::nullopt;
+}
+
+const RestitutionFit* blunt_restitution_law(const CalibrationTable& t) {
+  if (!t.model) return nullptr;
+  if (t.bow_shock && t.bow_shock->restitution_law) return &*t.bow_shock->restitution_law;
+  return t.fit(uses_angle(*t.model) ? RestitutionModel::inverse_mach2 : *t.model);
+}
+
 std::optional<double> interpolate_restitution(const CalibrationTable& t, double mach,
                                               double angle_deg) {
   if (t.model) {
-    const bool blunt = std::isnan(angle_deg);
-    const RestitutionModel m =
-        blunt && uses_angle(*t.model) ? RestitutionModel::inverse_mach2 : *t.model;
-    const RestitutionFit* f = t.fit(m);
+    const RestitutionFit* f = std::isnan(angle_deg) ? blunt_restitution_law(t) : t.fit(*t.model);
     if (!f) return std::nullopt;  // read_calibration refuses such a table
     return std::min(f->evaluate(mach, angle_deg), kMaxRestitution);
   }

@@ -10,24 +10,22 @@ namespace pipeline {
 namespace {
 // A fit with a wider 95% interval than this is noise, not a shock angle.
 constexpr double kMaxUsableCiDeg = 5.0;
-// Refined e are rounded to this, and an e within it of a run is that run.
-constexpr double kRefineStep = 1e-4;
-
-double rounded(double e) {
-  return std::round(e / kRefineStep) * kRefineStep;
-}
-
 bool already_run(const std::vector<SweepPoint>& pts, double e) {
-  return std::any_of(pts.begin(), pts.end(),
-                     [e](const SweepPoint& p) { return std::abs(p.e - e) < 0.5 * kRefineStep; });
+  return std::any_of(pts.begin(), pts.end(), [e](const SweepPoint& p) {
+    return std::abs(p.e - e) < 0.5 * kSweepRestitutionStep;
+  });
 }
 
 std::optional<double> fresh(const std::vector<SweepPoint>& pts, double e) {
-  const double r = rounded(e);
+  const double r = swept_restitution(e);
   if (!(r > 0) || r > kMaxRestitution || already_run(pts, r)) return std::nullopt;
   return r;
 }
 }  // namespace
+
+double swept_restitution(double e) {
+  return std::min(kMaxRestitution, std::round(e / kSweepRestitutionStep) * kSweepRestitutionStep);
+}
 
 bool usable(const SweepPoint& p) {
   return std::isfinite(p.angle) && p.angle > 0.0 && p.angle < 90.0 && std::isfinite(p.ci) &&

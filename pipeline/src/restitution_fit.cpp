@@ -26,6 +26,8 @@ std::vector<double> basis(RestitutionModel m, double mach, double angle_deg) {
       return {1.0};
     case RestitutionModel::inverse_mach2:
       return {1.0, 1.0 / (mach * mach)};
+    case RestitutionModel::log_mach:
+      return {1.0, std::log(mach)};
     case RestitutionModel::inverse_mach2_angle:
       return {1.0, 1.0 / (mach * mach), angle_deg};
   }
@@ -102,6 +104,8 @@ std::string model_key(RestitutionModel m) {
       return "constant";
     case RestitutionModel::inverse_mach2:
       return "inverse_mach2";
+    case RestitutionModel::log_mach:
+      return "log_mach";
     case RestitutionModel::inverse_mach2_angle:
       return "inverse_mach2_angle";
   }
@@ -114,6 +118,8 @@ std::string model_formula(RestitutionModel m) {
       return "e = c0";
     case RestitutionModel::inverse_mach2:
       return "e = c0 + c1/M^2";
+    case RestitutionModel::log_mach:
+      return "e = c0 + c1*ln(M)";
     case RestitutionModel::inverse_mach2_angle:
       return "e = c0 + c1/M^2 + c2*theta_deg";
   }
@@ -131,6 +137,7 @@ std::size_t parameter_count(RestitutionModel m) {
     case RestitutionModel::constant:
       return 1;
     case RestitutionModel::inverse_mach2:
+    case RestitutionModel::log_mach:
       return 2;
     case RestitutionModel::inverse_mach2_angle:
       return 3;

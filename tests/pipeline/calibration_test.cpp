@@ -207,6 +207,54 @@ TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
   EXPECT_EQ(message(entries), "");  // an old table (entries only) is fine
 }
 
+TEST(Calibration, BluntBodiesKeepTheLawTheirBowBlockWasMeasuredUnder) {
+  auto t = fitted_table();
+  // Without a recorded law, blunt bodies take the table's Mach-only fit and a
+  // new wedge fit drops the block (it was measured under the replaced fit).
+  t.bow_shock = pipeline::BowShockScatter{};
+  t.bow_shock->relative_rms = 0.17;
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4, NAN), 0.95612345678901234 + 1.0 / 48.0,
+              1e-15);
+  EXPECT_FALSE(pipeline::bow_shock_kept_by_wedge_fit(t).has_value());
+
+  // With one, blunt bodies take it whatever the wedge model, the block
+  // survives a new wedge fit, and both round-trip bit for bit.
+  const pipeline::RestitutionFit law{pipeline::RestitutionModel::log_mach,
+                                     {1.0140391379828468, -1.0 / 36.0}, 0.003, 0.0028};
+  t.bow_shock->restitution_law = law;
+  const double blunt = 1.0140391379828468 - std::log(4.0) / 36.0;
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4, NAN), blunt, 1e-15);
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 6, 20),
+              0.9491 + (2.0 / 7.0) / 36.0 + 20.0 / 1300.0, 1e-15);  // wedges: the model
+  const auto kept = pipeline::bow_shock_kept_by_wedge_fit(t);
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_DOUBLE_EQ(kept->relative_rms, 0.17);
+
+  const auto path = (std::filesystem::temp_directory_path() / "calib_law.yaml").string();
+  pipeline::write_calibration(t, path);
+  const auto back = pipeline::read_calibration(path);
+  ASSERT_TRUE(back.bow_shock && back.bow_shock->restitution_law);
+  EXPECT_EQ(back.bow_shock->restitution_law->model, pipeline::RestitutionModel::log_mach);
+  EXPECT_EQ(back.bow_shock->restitution_law->coefficients, law.coefficients);
+  EXPECT_EQ(*pipeline::interpolate_restitution(back, 4, NAN),
+            *pipeline::interpolate_restitution(t, 4, NAN));
+
+  // A law with a wedge angle cannot serve bodies without one.
+  scene::write_file_atomic(
+      path, "entries: [{mach: 3, angle_deg: 10, restitution: 0.98}]\n"
+            "model: constant\nfits: [{model: constant, coefficients: [0.98]}]\n"
+            "training_points: [[3, 10]]\n"
+            "bow_shock: {relative_rms: 0.1, restitution_law: {model: inverse_mach2_angle, "
+            "coefficients: [0.9, 0.2, 0.001]}}\n");
+  try {
+    pipeline::read_calibration(path);
+    ADD_FAILURE() << "an angle law for blunt bodies was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'bow_shock.restitution_law'"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
   nlohmann::json c = {
       {"model", "inverse_mach2"},

@@ -79,7 +79,7 @@ TEST(RestitutionFit, LeaveOneOutPicksTheRightModel) {
   const auto c1 = pipeline::choose_restitution_model(mach_only);
   ASSERT_TRUE(c1.has_value());
   EXPECT_EQ(c1->fit().model, RestitutionModel::inverse_mach2);
-  EXPECT_EQ(c1->candidates.size(), 3u);
+  EXPECT_EQ(c1->candidates.size(), 4u);
 
   // A real angle dependence (0.02 over 8-20 deg) well above the same noise.
   const auto with_angle =
@@ -93,6 +93,26 @@ TEST(RestitutionFit, LeaveOneOutPicksTheRightModel) {
       synthetic([](double m, double) { return 0.956 + 0.25 / (m * m); }, [](int) { return 0.0; });
   EXPECT_EQ(pipeline::choose_restitution_model(exact)->fit().model,
             RestitutionModel::inverse_mach2);
+}
+
+TEST(RestitutionFit, LogMachLawIsRecoveredAndChosen) {
+  // e still falling at high Mach number, as ln M does and 1/M^2 does not.
+  const auto law = [](double m, double) { return 1.014 - 0.0277 * std::log(m); };
+  const auto exact = synthetic(law, [](int) { return 0.0; });
+  const auto f = pipeline::fit_restitution(exact, RestitutionModel::log_mach);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->coefficients[0], 1.014, kCoefficientTolerance);
+  EXPECT_NEAR(f->coefficients[1], -0.0277, kCoefficientTolerance);
+  EXPECT_EQ(pipeline::model_key(RestitutionModel::log_mach), "log_mach");
+  EXPECT_EQ(pipeline::model_from_key("log_mach"), RestitutionModel::log_mach);
+  EXPECT_FALSE(pipeline::uses_angle(RestitutionModel::log_mach));
+
+  // With noise a fifth of the 1/M^2 model's misfit at the Mach ends (0.003), ln M
+  // wins out of sample.
+  const auto noise = [](int i) { return (i % 2 == 0 ? 1.0 : -1.0) * 0.0005; };
+  const auto c = pipeline::choose_restitution_model(synthetic(law, noise));
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->fit().model, RestitutionModel::log_mach);
 }
 
 TEST(RestitutionFit, LeaveOneOutPredictionIgnoresThePoint) {

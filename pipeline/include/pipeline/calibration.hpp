@@ -85,6 +85,12 @@ struct BowShockScatter {
   double cpu_seconds = scene::kNaN;
   std::vector<BowShapeFit> shapes;  // empty: every blunt body takes the wedge e(M)
   const BowShapeFit* shape(const std::string& name) const;
+  // The Mach-only e(M) the training bodies ran at, i.e. the law this scatter
+  // was measured under: blunt bodies keep it, and the block stays, when a new
+  // wedge calibration replaces the table's fits. Absent in tables written
+  // before it was recorded: blunt bodies then take the table's Mach-only fit,
+  // and a new wedge fit drops the block.
+  std::optional<RestitutionFit> restitution_law;
 };
 
 struct CalibrationTable {
@@ -112,9 +118,20 @@ void write_calibration(const CalibrationTable& t, const std::string& path);
 // in sample) or fewer than two such entries.
 double out_of_sample_angle_rms_deg(const CalibrationTable& t);
 
+// The Mach-only fit that bodies without a wedge angle take: the bow block's
+// recorded law, else the chosen model when it ignores the angle, else the
+// inverse_mach2 fit. nullptr for an old table (entries only).
+const RestitutionFit* blunt_restitution_law(const CalibrationTable& t);
+
+// What a new wedge calibration keeps of the table it replaces: the bow
+// block when it records the e(M) its bodies ran at (it does not depend on
+// the wedge fit, and blunt bodies keep that law), else nothing (it was
+// measured under the fit being replaced).
+std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const CalibrationTable& old);
+
 // The restitution for a body at (mach, angle_deg). A fitted table evaluates
-// its model, clamped to e <= 1; a NaN angle (blunt bodies) takes the
-// Mach-only model, an extrapolation from wedges. An old table interpolates
+// its model, clamped to e <= 1; a NaN angle (blunt bodies) takes
+// blunt_restitution_law, an extrapolation from wedges. An old table interpolates
 // by inverse distance in (Mach, angle) scaled by (1, 5 deg) (an exact match
 // returns its entry's e; a NaN angle weighs the entries by Mach alone).
 // nullopt for an empty table.

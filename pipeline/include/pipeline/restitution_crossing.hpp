@@ -6,6 +6,12 @@
 
 namespace pipeline {
 
+// Swept e (wedge angles and blunt standoffs alike) are rounded to this step,
+// clamped to the elastic limit: the cache directories are named by e, and an
+// e within half a step of a run is that run.
+inline constexpr double kSweepRestitutionStep = 1e-4;
+double swept_restitution(double e);
+
 // One run of a sweep: e, the granular shock angle and its 95% half-width (deg).
 struct SweepPoint {
   double e = 1, angle = 0, ci = 0;

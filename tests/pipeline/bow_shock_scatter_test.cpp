@@ -107,6 +107,10 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   EXPECT_EQ(pipeline::apply_calibration(disc, path).bow_shock_relative_rms, 0.1234567890123);
   auto wedge = scene::parse_scene("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 3.5}\n");
   EXPECT_TRUE(std::isnan(pipeline::apply_calibration(wedge, path).bow_shock_relative_rms));
+  // A wedge beyond its maximum deflection stands its shock off like a blunt body.
+  auto detached =
+      scene::parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n");
+  EXPECT_EQ(pipeline::apply_calibration(detached, path).bow_shock_relative_rms, 0.1234567890123);
   // A scene's own restitution owes nothing to the table.
   auto own = scene::parse_scene(
       "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 3.5}\ngranular: {restitution: 0.97}\n");

@@ -302,6 +302,23 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
   EXPECT_EQ(r["case_studies_left_out"].get<int>(), 1);
   const auto t = pipeline::read_calibration((dir / "table.yaml").string());
   EXPECT_NEAR(*pipeline::interpolate_restitution(t, 4.0, 12.0), 0.95 + 0.2 / 16.0, 1e-9);
+
+  // Refitting the shipped table keeps its bow block, which records the law its
+  // blunt bodies ran at: their e does not move with the new wedge fit.
+  const auto shipped = (dir / "shipped.yaml").string();
+  std::filesystem::copy_file(pipeline::builtin_calibration_path(), shipped,
+                             std::filesystem::copy_options::overwrite_existing);
+  const auto before = pipeline::read_calibration(shipped);
+  ASSERT_TRUE(before.bow_shock && before.bow_shock->restitution_law);
+  const auto k = pipeline::calibrate_from_points((dir / "points.json").string(), shipped);
+  EXPECT_TRUE(k["bow_shock_kept"].get<bool>());
+  const auto after = pipeline::read_calibration(shipped);
+  ASSERT_TRUE(after.bow_shock.has_value());
+  EXPECT_EQ(after.bow_shock->shapes.size(), before.bow_shock->shapes.size());
+  EXPECT_EQ(*pipeline::interpolate_restitution(after, 4.0, NAN),
+            *pipeline::interpolate_restitution(before, 4.0, NAN));
+  EXPECT_NEAR(*pipeline::interpolate_restitution(after, 4.0, 12.0), 0.95 + 0.2 / 16.0, 1e-9);
+
   scene::write_file_atomic((dir / "bad.json").string(), "{\"crossings\": 3}");
   EXPECT_THROW(pipeline::calibrate_from_points((dir / "bad.json").string(), ""), scene::InputError);
   EXPECT_THROW(pipeline::calibrate_from_points((dir / "missing.json").string(), ""),

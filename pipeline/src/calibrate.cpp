@@ -84,13 +84,6 @@ void check_seed_room(const scene::Scene& s, const std::string& origin) {
         " replicas (the out-of-sample seeds start that far above granular.seed)");
 }
 
-// Read before any run, so a malformed table stops the calibration before it
-// costs anything.
-std::optional<BowShockScatter> kept_bow_shock(const std::string& table_path) {
-  if (!fs::is_regular_file(table_path)) return std::nullopt;
-  return bow_shock_kept_by_wedge_fit(read_calibration(table_path));
-}
-
 struct Training {
   scene::Scene scene;
   std::string origin;
@@ -138,7 +131,9 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   const auto training = training_set(o, case_points);
 
   const std::string table_path = o.table_path.empty() ? builtin_calibration_path() : o.table_path;
-  const auto bow_shock = kept_bow_shock(table_path);
+  // Read before any run, so a malformed table stops the calibration before it
+  // costs anything.
+  const auto bow_shock = bow_shock_kept_by_wedge_fit(table_path);
   scene::make_dirs(o.out_dir);
   const std::size_t n_runs =
       training.size() *

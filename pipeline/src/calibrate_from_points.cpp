@@ -77,9 +77,7 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
   table.cpu_seconds = j.contains("cpu_seconds") && j["cpu_seconds"].is_number() ? j["cpu_seconds"].get<double>()
                                                                                  : std::nan("");
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;
-  // A bow block that records its own e(M) does not depend on the wedge fit replaced here.
-  if (std::filesystem::is_regular_file(out))
-    table.bow_shock = bow_shock_kept_by_wedge_fit(read_calibration(out));
+  table.bow_shock = bow_shock_kept_by_wedge_fit(out);
   write_calibration(table, out);
   nlohmann::json r = {{"points", pts.size()}, {"case_studies_left_out", skipped},
                       {"model", model_formula(choice->fit().model)}, {"coefficients", choice->fit().coefficients},

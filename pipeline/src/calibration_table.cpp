@@ -314,6 +314,11 @@ std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const CalibrationTabl
   return std::nullopt;
 }
 
+std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) return std::nullopt;
+  return bow_shock_kept_by_wedge_fit(read_calibration(path));
+}
+
 const RestitutionFit* blunt_restitution_law(const CalibrationTable& t) {
   if (!t.model) return nullptr;
   if (t.bow_shock && t.bow_shock->restitution_law) return &*t.bow_shock->restitution_law;

@@ -18,7 +18,7 @@ bool already_run(const std::vector<SweepPoint>& pts, double e) {
 
 std::optional<double> fresh(const std::vector<SweepPoint>& pts, double e) {
   const double r = swept_restitution(e);
-  if (!(r > 0) || r > kMaxRestitution || already_run(pts, r)) return std::nullopt;
+  if (!(r > 0) || already_run(pts, r)) return std::nullopt;  // swept_restitution clamps at e = 1
   return r;
 }
 }  // namespace

@@ -128,6 +128,9 @@ const RestitutionFit* blunt_restitution_law(const CalibrationTable& t);
 // the wedge fit, and blunt bodies keep that law), else nothing (it was
 // measured under the fit being replaced).
 std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const CalibrationTable& old);
+// The same for the table at `path` about to be replaced (nothing when there
+// is none yet); InputError if that table is malformed.
+std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const std::string& path);
 
 // The restitution for a body at (mach, angle_deg). A fitted table evaluates
 // its model, clamped to e <= 1; a NaN angle (blunt bodies) takes

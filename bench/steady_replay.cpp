@@ -5,15 +5,19 @@
 // shock's drift (least-squares slope over the gate's window) there; the
 // numbers of docs/reliability.md ("Bow shocks that drift").
 //
-//   steady_replay [--rows] [--csv OUTDIR] [--default-tolerances] CASEDIR...
+//   steady_replay [--rows] [--csv OUTDIR] [--default-tolerances] [--errors] CASEDIR...
 //
 // CASEDIR: a `cfd run` case (scene.yaml, history.csv, the time directories),
 // only read. --rows also prints each row's shock position and drift; --csv
 // writes the recomputed history (history.csv's columns, under the new rule)
 // to OUTDIR/<CASEDIR with '/' as '_'>.csv; --default-tolerances judges
 // with the default steady_tol, force_tol, min_time and steady_checks instead
-// of the case's own (diagnostic runs that disabled the rule).
+// of the case's own (diagnostic runs that disabled the rule); --errors also
+// measures the verdict's primary error at the current rule's stop and at the
+// recorded run's last written time (its stop), each from that time and the
+// one before, as the pipeline measures a finished grid.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,6 +31,8 @@
 #include <vector>
 
 #include "case_monitor.hpp"
+#include "pipeline/error_measures.hpp"
+#include "pipeline/verdict.hpp"
 #include "scene/body.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
@@ -74,8 +80,33 @@ std::string num(double v) {
   return std::isfinite(v) ? fmt::format("{:+.3g}", v) : "-";
 }
 
+// history.csv writes times to 10 digits: a written time within this relative
+// distance of a recorded one is that time.
+constexpr double kSameTime = 1e-7;
+
+// The primary error of the case as if its run had stopped at written time
+// `stop`: measured on a scratch case that links the mesh, the dictionaries
+// and the written times up to `stop`.
+pipeline::MeasuredError error_at(const scene::Scene& s, const std::string& case_dir,
+                                 const std::string& primary, double stop) {
+  const fs::path scratch =
+      fs::temp_directory_path() /
+      fmt::format("steady_replay_{}_{}", ::getpid(), std::hash<std::string>{}(case_dir));
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  for (const char* d : {"constant", "system"})
+    fs::create_directory_symlink(fs::absolute(fs::path(case_dir) / d), scratch / d);
+  for (const cfd::TimeDir& t : cfd::time_dirs(case_dir))
+    if (t.time <= stop * (1 + kSameTime))
+      fs::create_directory_symlink(fs::absolute(fs::path(case_dir) / t.name), scratch / t.name);
+  const pipeline::MeasuredError e =
+      pipeline::measure_named(pipeline::measure_case_errors(s, scratch.string()), primary);
+  fs::remove_all(scratch);
+  return e;
+}
+
 struct Options {
-  bool print_rows = false, default_tolerances = false;
+  bool print_rows = false, default_tolerances = false, errors = false;
   std::string csv_dir;
 };
 
@@ -107,6 +138,7 @@ void replay(const std::string& case_dir, const Options& o) {
   cfd::SteadyState old_rule(old_c), new_rule(old_c.with_shock_drift_gate(s));
   const scene::BodyGeometry g = scene::make_body(*s.body);
   std::optional<cfd::Snapshot> prev;
+  std::vector<double> row_time;
   int old_at = -1, new_at = -1;
   std::string ended = "end";
   for (const cfd::TimeDir& t : reader.times_after(0.0)) {
@@ -120,6 +152,7 @@ void replay(const std::string& case_dir, const Options& o) {
     if (prev) {
       cfd::HistoryRow row = cfd::compare(*prev, snap, reader.parts(), rho_inf, rec.norm_time);
       row.steps = steps_at(rec, t.time);
+      row_time.push_back(t.time);
       old_rule.add(row);
       new_rule.add(row);
       const int k = static_cast<int>(new_rule.rows().size()) - 1;
@@ -170,6 +203,21 @@ void replay(const std::string& case_dir, const Options& o) {
           ? (sum["steady_state_reached"].get<bool>() ? "yes" : "no")
           : "?",
       new_rule.why().c_str());
+  if (o.errors && !rec.steps.empty()) {
+    const std::string primary = pipeline::primary_error_for(s).name;
+    const double end = rec.steps.rbegin()->first;
+    const pipeline::MeasuredError at_end = error_at(s, case_dir, primary, end);
+    const double stop = new_at < 0 ? end : row_time[static_cast<std::size_t>(new_at)];
+    const pipeline::MeasuredError at_stop = error_at(s, case_dir, primary, stop);
+    std::printf(
+        "  %s | recorded stop %.2f ft, %ld steps, %.4g +- %.2g | new stop %.2f ft, %ld steps, "
+        "%.4g +- %.2g | steps %.3f, error %+.4f relative\n",
+        primary.c_str(), end / rec.norm_time, rec.steps.rbegin()->second, at_end.value,
+        at_end.uncertainty, stop / rec.norm_time, steps_at(rec, stop), at_stop.value,
+        at_stop.uncertainty,
+        static_cast<double>(steps_at(rec, stop)) / static_cast<double>(rec.steps.rbegin()->second),
+        at_stop.value / at_end.value - 1);
+  }
 }
 
 }  // namespace
@@ -180,6 +228,10 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--rows") {
       o.print_rows = true;
+      continue;
+    }
+    if (a == "--errors") {
+      o.errors = true;
       continue;
     }
     if (a == "--default-tolerances") {

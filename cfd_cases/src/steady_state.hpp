@@ -4,6 +4,7 @@
 // and ask whether the run is steady and why. No OpenFOAM needed, so the rule
 // is tested on synthetic histories.
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,14 @@ class SteadyState {
   };
   // The drift gate on the rows so far; sets the last row's shock_drift.
   ShockGate shock_gate();
+  // The body force over the last window of rows (steady_state.cpp): its
+  // least-squares slope per unit of progress and its scatter about that line,
+  // both relative to the window's mean force; NaN until the window is full.
+  struct ForceTrend {
+    double slope = std::numeric_limits<double>::quiet_NaN();
+    double flicker = std::numeric_limits<double>::quiet_NaN();
+  };
+  ForceTrend force_trend() const;
 
   SteadyCriteria c_;
   std::vector<HistoryRow> rows_;

@@ -131,6 +131,12 @@ class FamilyDraw {
   std::vector<double> sd_;
 };
 
+// log(exp(log_cost) + fixed): a family's log cost with its fixed part.
+double with_fixed(double log_cost, double fixed) {
+  if (!(fixed > 0) || !std::isfinite(log_cost)) return log_cost;
+  return std::log(std::exp(log_cost) + fixed);
+}
+
 }  // namespace
 
 double LogLogFit::log_cost_at(double error) const {
@@ -154,8 +160,13 @@ LogLogFit fit_log_log(const std::vector<CostError>& runs) {
 
 Interval cost_ratio_at_error(const std::vector<CostError>& slow, const std::vector<CostError>& fast,
                              double target_error, const EqualErrorOptions& o) {
-  const FamilyPair fixed{slow, fast};
-  return cost_ratio_at_error(fixed, [&](std::mt19937_64&) { return fixed; }, target_error, o);
+  return cost_ratio_at_error(FamilyPair{slow, fast}, target_error, o);
+}
+
+Interval cost_ratio_at_error(const FamilyPair& runs, double target_error,
+                             const EqualErrorOptions& o) {
+  return cost_ratio_at_error(
+      runs, [&](std::mt19937_64&) { return runs; }, target_error, o);
 }
 
 Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sample, double target_error,
@@ -164,7 +175,8 @@ Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sampl
   const FamilyDraw s(nominal.slow), f(nominal.fast);
   if (!(target_error > 0) || !std::isfinite(target_error) || !s.usable() || !f.usable()) return out;
   const double le = std::log(target_error);
-  out.value = std::exp(s.nominal(le) - f.nominal(le));
+  out.value = std::exp(with_fixed(s.nominal(le), nominal.slow_fixed) -
+                       with_fixed(f.nominal(le), nominal.fast_fixed));
   std::mt19937_64 rng(o.seed);
   std::vector<double> ratios;
   ratios.reserve(static_cast<std::size_t>(o.draws));
@@ -172,7 +184,8 @@ Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sampl
   for (int k = 0; k < o.draws; ++k) {
     const FamilyPair drawn = sample(rng);
     const FamilyDraw ds(drawn.slow), df(drawn.fast);
-    const double d = ds.draw(le, rng) - df.draw(le, rng);
+    const double d = with_fixed(ds.draw(le, rng), drawn.slow_fixed) -
+                     with_fixed(df.draw(le, rng), drawn.fast_fixed);
     if (std::isnan(d)) ++undefined;
     else ratios.push_back(d);
   }

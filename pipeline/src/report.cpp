@@ -89,14 +89,17 @@ void copy_if_exists(const std::string& from, const std::string& to) {
 }
 
 // A family's fitted error-against-cost line over its cost range, with the
-// band of the residual scatter (+-2 s in log error) as dashed lines.
-void add_fit(PlotSpec& p, const LogLogFit& f, const std::vector<double>& costs, const std::string& title) {
+// band of the residual scatter (+-2 s in log error) as dashed lines. The fit
+// is on the cost less `fixed` (the family's predictor on the total figure).
+void add_fit(PlotSpec& p, const LogLogFit& f, const std::vector<double>& costs,
+             const std::string& title, double fixed = 0) {
   if (!f.ok || costs.empty()) return;
-  double lo = costs.front(), hi = costs.front();
+  double lo = costs.front() - fixed, hi = costs.front() - fixed;
   for (const double c : costs) {
-    lo = std::min(lo, c);
-    hi = std::max(hi, c);
+    lo = std::min(lo, c - fixed);
+    hi = std::max(hi, c - fixed);
   }
+  if (!(lo > 0)) return;
   constexpr int kPoints = 20;
   constexpr double kBandSd = 2.0;
   Series mid, up, down;
@@ -108,11 +111,11 @@ void add_fit(PlotSpec& p, const LogLogFit& f, const std::vector<double>& costs, 
   for (int k = 0; k <= kPoints; ++k) {
     const double x = std::exp(std::log(lo) + (std::log(hi) - std::log(lo)) * k / kPoints);
     const double y = f.a + f.b * std::log(x);
-    mid.x.push_back(x);
+    mid.x.push_back(x + fixed);
     mid.y.push_back(std::exp(y));
-    up.x.push_back(x);
+    up.x.push_back(x + fixed);
     up.y.push_back(std::exp(y + kBandSd * f.residual_sd));
-    down.x.push_back(x);
+    down.x.push_back(x + fixed);
     down.y.push_back(std::exp(y - kBandSd * f.residual_sd));
   }
   p.series.push_back(mid);
@@ -154,7 +157,7 @@ void cost_figures(const ReportInputs& in, const std::string& fig) {
     tot.series.push_back(st);
     const FamilyFitInfo& info = clustered ? v.clustered : v.uniform;
     add_fit(cfd, info.cfd, xc, title);
-    add_fit(tot, info.total, xt, title);
+    add_fit(tot, info.total, xt, title, clustered ? v.predictor_cpu : 0.0);
   }
   plot_png(cfd, fig + "/error_vs_cfd_cpu.png");
   plot_png(tot, fig + "/error_vs_total_cpu.png");

@@ -46,18 +46,26 @@ bool has_work(const std::vector<VerdictRun>& runs) {
   return std::all_of(runs.begin(), runs.end(), [](const VerdictRun& r) { return r.cells > 0 && r.steps > 0; });
 }
 
-// A family's (cost, error) points: CFD CPU alone, or the total with meshing
-// and the predictor's CPU; priced by `price` when given.
-std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total, double predictor_cpu,
+// A family's (cost, error) points: CFD CPU alone, or with the grid's
+// meshing (`total`; the predictor, paid once per family, is the pair's fixed
+// cost); priced by `price` when given.
+std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total,
                              const WorkPrice* price) {
   std::vector<CostError> out;
   for (const auto& r : runs) {
     const WorkRun w = work_of(r);
     const double cfd = price ? price->cfd(w) : r.cfd_cpu;
     const double mesh = price ? price->mesh(w) : r.mesh_cpu;
-    out.push_back({total ? predictor_cpu + mesh + cfd : cfd, r.error, r.error_ci});
+    out.push_back({total ? mesh + cfd : cfd, r.error, r.error_ci});
   }
   return out;
+}
+
+// Both families' points; with `total`, each family's predictor as its fixed cost.
+FamilyPair family_pair(const std::vector<VerdictRun>& u, const std::vector<VerdictRun>& c,
+                       bool total, double u_predictor, double c_predictor, const WorkPrice* price) {
+  return {costs(u, total, price), costs(c, total, price), total ? u_predictor : 0.0,
+          total ? c_predictor : 0.0};
 }
 
 // The speedups with the price's and the predictor timing's uncertainty drawn
@@ -80,12 +88,12 @@ void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::ve
       const double sd = fitted.cfd_log_sd * std::sqrt(dof / std::max(chi2(rng), 1e-300));
       const double pred = predictor * std::exp(sd * normal(rng));
       const double u_pred = u_predictor > 0 ? u_predictor * std::exp(sd * normal(rng)) : 0.0;
-      return FamilyPair{costs(u, total, u_pred, &use), costs(c, total, pred, &use)};
+      return family_pair(u, c, total, u_pred, pred, &use);
     };
   };
-  v.speedup_cfd = cost_ratio_at_error({costs(u, false, 0, &fitted), costs(c, false, 0, &fitted)}, sampler(false),
-                                      v.target_error);
-  v.speedup_total = cost_ratio_at_error({costs(u, true, u_predictor, &fitted), costs(c, true, predictor, &fitted)},
+  v.speedup_cfd =
+      cost_ratio_at_error(family_pair(u, c, false, 0, 0, &fitted), sampler(false), v.target_error);
+  v.speedup_total = cost_ratio_at_error(family_pair(u, c, true, u_predictor, predictor, &fitted),
                                         sampler(true), v.target_error);
 }
 }  // namespace
@@ -116,10 +124,10 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   if (has_work(c) && has_work(u)) v.price = fit_work_price(work_of(c, u));
   v.priced = v.price.ok;
   const WorkPrice* price = v.priced ? &v.price : nullptr;
-  v.clustered.cfd = fit_log_log(costs(c, false, 0, price));
-  v.clustered.total = fit_log_log(costs(c, true, predictor_cpu, price));
-  v.uniform.cfd = fit_log_log(costs(u, false, 0, price));
-  v.uniform.total = fit_log_log(costs(u, true, uniform_predictor_cpu, price));
+  v.clustered.cfd = fit_log_log(costs(c, false, price));
+  v.clustered.total = fit_log_log(costs(c, true, price));
+  v.uniform.cfd = fit_log_log(costs(u, false, price));
+  v.uniform.total = fit_log_log(costs(u, true, price));
   if (c.empty() || u.empty()) {
     v.note = "a family has no usable run";
     return v;
@@ -135,10 +143,9 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
     u_hi = std::max(u_hi, r.error);
   }
   v.extrapolated = v.target_error < u_lo || v.target_error > u_hi;
-  v.measured_cfd = cost_ratio_at_error(costs(u, false, 0, nullptr), costs(c, false, 0, nullptr), v.target_error);
-  v.measured_total =
-      cost_ratio_at_error(costs(u, true, uniform_predictor_cpu, nullptr), costs(c, true, predictor_cpu, nullptr),
-                          v.target_error);
+  v.measured_cfd = cost_ratio_at_error(family_pair(u, c, false, 0, 0, nullptr), v.target_error);
+  v.measured_total = cost_ratio_at_error(
+      family_pair(u, c, true, uniform_predictor_cpu, predictor_cpu, nullptr), v.target_error);
   if (v.priced) {
     priced_speedups(v, c, u, uniform_predictor_cpu);
   } else {

@@ -65,6 +65,29 @@ TEST(EqualError, ExactFamiliesGiveTheExactRatioAndAPointInterval) {
   EXPECT_EQ(pipeline::verdict_of(pipeline::cost_ratio_at_error(fast, slow, 0.05)), "slower");
 }
 
+TEST(EqualError, AFixedCostIsAddedAfterTheFitNotFoldedIntoIt) {
+  // The fast family reaches every error at 1/4 of the slow one's per-grid
+  // cost and pays a fixed 20 (its predictor, as large as its middle grid's
+  // cost) once. At error 0.01 the slow family costs 100, the fast one
+  // 25 + 20: exactly 20/9, with a point interval since both per-grid laws
+  // are exact.
+  const auto slow = power_law(1.0, -1.0, {10, 20, 40, 80, 160});
+  const auto fast = power_law(0.25, -1.0, {2.5, 5, 10, 20, 40});
+  const auto r = pipeline::cost_ratio_at_error(pipeline::FamilyPair{slow, fast, 0.0, 20.0}, 0.01);
+  EXPECT_NEAR(r.value, 100.0 / 45.0, 1e-9);
+  EXPECT_NEAR(r.ci_low, r.value, 1e-6);
+  EXPECT_NEAR(r.ci_high, r.value, 1e-6);
+  // Folded into every run's cost, the same 20 bends the fast family's line
+  // (it dominates the coarse runs): the fit no longer holds its own points
+  // and the interval opens around a biased value.
+  auto folded = fast;
+  for (auto& run : folded) run.cost += 20.0;
+  const auto bent = pipeline::cost_ratio_at_error(slow, folded, 0.01);
+  // (measured: 2.14, 1.52-2.58 against the exact 2.22)
+  EXPECT_GT(std::abs(bent.value / r.value - 1.0), 0.02);
+  EXPECT_GT(bent.ci_high / bent.ci_low, 1.5);
+}
+
 TEST(EqualError, ScatterWidensTheIntervalAroundTheTruth) {
   // Residual scatter of ~10% on a 3x ratio: interval contains 3, lies above 1.
   auto slow = power_law(1.0, -0.5, {10, 20, 40, 80, 160});

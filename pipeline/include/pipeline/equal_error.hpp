@@ -48,13 +48,22 @@ struct EqualErrorOptions {
 Interval cost_ratio_at_error(const std::vector<CostError>& slow, const std::vector<CostError>& fast,
                              double target_error, const EqualErrorOptions& o = {});
 
+// Both families' runs, each with a fixed cost paid once whatever grid it
+// runs (a predictor): the fit sees only the costs that grow with the grid,
+// and the fixed cost is added to the cost read off it. A constant folded
+// into every run's cost instead bends the log-log line it is fitted with
+// (the fixed part dominates the coarse runs), which widened the interval.
+struct FamilyPair {
+  std::vector<CostError> slow, fast;
+  double slow_fixed = 0, fast_fixed = 0;
+};
+Interval cost_ratio_at_error(const FamilyPair& runs, double target_error,
+                             const EqualErrorOptions& o = {});
+
 // The same with costs that carry their own uncertainty (a priced cost
 // model, one timing's scatter): `sample` returns both families' runs as one
 // draw sees them, with freshly drawn costs; the errors are perturbed and the
 // fits drawn as above. `nominal` gives the central value.
-struct FamilyPair {
-  std::vector<CostError> slow, fast;
-};
 using CostSampler = std::function<FamilyPair(std::mt19937_64&)>;
 Interval cost_ratio_at_error(const FamilyPair& nominal, const CostSampler& sample, double target_error,
                              const EqualErrorOptions& o = {});

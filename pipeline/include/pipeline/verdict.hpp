@@ -39,7 +39,9 @@ struct VerdictRun {
 };
 
 struct FamilyFitInfo {
-  LogLogFit cfd, total;   // error against CFD CPU, and against total CPU
+  // Error against CFD CPU, and against the grid's meshing + CFD CPU (the
+  // family's predictor, paid once, is added to the cost read off the fit).
+  LogLogFit cfd, total;
   int used = 0;           // runs in the fit
   std::vector<std::string> excluded;  // "uniform_h4: not steady", ...
 };

@@ -8,6 +8,7 @@
 
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
+#include "scene/units.hpp"
 
 namespace cfd {
 
@@ -15,8 +16,9 @@ namespace {
 // Slack on min_time, in flow-through times (written times are rounded).
 constexpr double kMinTimeSlack = 1e-6;
 
-// Checks per plateau window, and how much the density change must still be
-// falling from one window to the next to count as converging.
+// Rows per window of the force's trend and the noise floor, and how much the
+// density change must still be falling per flow-through to count as
+// converging.
 constexpr std::size_t kPlateauChecks = 5;
 constexpr double kStillFalling = 0.8;
 }  // namespace
@@ -50,23 +52,29 @@ SteadyCriteria SteadyCriteria::iteration_windows(const scene::CfdParams& p,
 // in the captured shock flicker (rhoCentralFoam's limiter), leaving a floor
 // that grows with shock strength (0.03 per flow-through at Mach 3, 0.05 at
 // Mach 5, 0.15 at Mach 8) while the body force is steady to 1e-3. So a run is
-// also steady once the density change has stopped falling (the mean over the
-// last window is no less than kStillFalling times the window before's) and
-// the body force over the last window stays within force_tol of its mean.
-bool at_noise_floor(const std::vector<HistoryRow>& rows, double force_tol) {
-  if (rows.size() < 2 * kPlateauChecks) return false;
-  const auto last = rows.end() - static_cast<std::ptrdiff_t>(kPlateauChecks);
-  const auto before = last - static_cast<std::ptrdiff_t>(kPlateauChecks);
-  double now = 0, prev = 0, fmin = 1e300, fmax = -1e300, fmean = 0;
-  for (auto it = last; it != rows.end(); ++it) {
-    now += it->drho_l2;
-    const double f = scene::norm(it->force);
-    fmin = std::min(fmin, f);
-    fmax = std::max(fmax, f);
-    fmean += f / static_cast<double>(kPlateauChecks);
+// also steady once the density change has stopped falling and the body force
+// has settled over the last window. "Stopped falling": the least-squares
+// slope of ln(drho) over the window is above ln(kStillFalling) per
+// flow-through. One window, not the mean of one window against the one
+// before, which held every run on the floor 2 flow-throughs after it got
+// there (docs/cfd_cases.md, "The force's trend").
+double SteadyState::density_trend() const {
+  const std::size_t n = kPlateauChecks;
+  if (rows_.size() < n) return scene::kNaN;
+  const auto first = rows_.end() - static_cast<std::ptrdiff_t>(n);
+  double t_mean = 0, l_mean = 0;
+  for (auto it = first; it != rows_.end(); ++it) {
+    if (!(it->drho_l2 > 0)) return scene::kNaN;
+    t_mean += progress(*it) / static_cast<double>(n);
+    l_mean += std::log(it->drho_l2) / static_cast<double>(n);
   }
-  for (auto it = before; it != last; ++it) prev += it->drho_l2;
-  return now >= kStillFalling * prev && fmax - fmin <= force_tol * std::abs(fmean);
+  double stt = 0, stl = 0;
+  for (auto it = first; it != rows_.end(); ++it) {
+    const double dt = progress(*it) - t_mean;
+    stt += dt * dt;
+    stl += dt * (std::log(it->drho_l2) - l_mean);
+  }
+  return stt > 0 ? stl / stt : scene::kNaN;
 }
 
 // The body force of a converged captured-shock solution flickers too: the
@@ -187,10 +195,9 @@ void SteadyState::add(const HistoryRow& row) {
   const double at = progress(row);
   const bool early = at < c_.min_time - kMinTimeSlack;
   const ForceTrend trend = force_trend();
-  const bool force_settled =
-      row.dforce < c_.force_tol || (trend.slope <= c_.force_tol && trend.flicker <= c_.force_tol);
-  const bool below_tol = row.drho_l2 < c_.steady_tol && force_settled;
-  const bool plateau = !below_tol && at_noise_floor(rows_, c_.force_tol);
+  const bool force_still = trend.slope <= c_.force_tol && trend.flicker <= c_.force_tol;
+  const bool below_tol = row.drho_l2 < c_.steady_tol && (row.dforce < c_.force_tol || force_still);
+  const bool plateau = !below_tol && force_still && density_trend() >= std::log(kStillFalling);
   const ShockGate gate = shock_gate();
   const bool ok = !early && (below_tol || plateau) && gate.ok;
   consecutive_ = ok ? consecutive_ + 1 : 0;

@@ -91,6 +91,9 @@ class SteadyState {
     double flicker = std::numeric_limits<double>::quiet_NaN();
   };
   ForceTrend force_trend() const;
+  // Least-squares slope of ln(drho_l2) per unit of progress over the same
+  // window; NaN until the window is full.
+  double density_trend() const;
 
   SteadyCriteria c_;
   std::vector<HistoryRow> rows_;
@@ -98,9 +101,5 @@ class SteadyState {
   bool steady_ = false;
   std::string why_ = "no rows yet";
 };
-
-// Whether the density change has settled at the noise floor of a captured
-// shock (see steady_state.cpp); exposed for tests.
-bool at_noise_floor(const std::vector<HistoryRow>& rows, double force_tol);
 
 }  // namespace cfd

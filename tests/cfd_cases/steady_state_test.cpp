@@ -99,8 +99,9 @@ TEST(SteadyState, NoisyPlateauAboveTheToleranceIsSteadyAtTheNoiseFloor) {
     return Sample{0.1 * (1.0 + noise), 5e-3, kForce * (1.0 + 1e-4 * noise)};
   });
   cfd::SteadyState rule(cfd::SteadyCriteria::time_accurate(defaults()));
-  // The plateau needs two windows of 5 rows: first at row 10, twice at 11.
-  EXPECT_EQ(steady_at(rule, rows), 11);
+  // The plateau needs one window of 5 rows and min_time: first at row 5,
+  // twice at 6 (the former rule compared two windows: row 11).
+  EXPECT_EQ(steady_at(rule, rows), 6);
   EXPECT_NE(rule.why().find("noise floor"), std::string::npos) << rule.why();
 }
 
@@ -234,7 +235,7 @@ cfd::SteadyCriteria blunt_criteria() {
 }
 
 // The noise-floor plateau of NoisyPlateauAboveTheToleranceIsSteadyAtTheNoiseFloor
-// (steady at row 11 by the old rule), its shock on the stagnation line at
+// (steady at row 6 without the gate), its shock on the stagnation line at
 // shock(k) for row k.
 std::vector<cfd::HistoryRow> plateau_with_shock(int n, const std::function<double(int)>& shock) {
   auto rows = history(n, [](int k) {
@@ -266,12 +267,12 @@ TEST(ShockDriftGate, DriftingStandoffWithAFlatForceIsNotSteady) {
   // The measured defect: the M1.3 disc's shock crept upstream at ~0.9 radii
   // per flow-through while the force stayed within force_tol and the density
   // change sat at its floor. Here a slower creep, 0.1 radii per flow-through
-  // (ten times the tolerance): the old rule calls it steady at row 11, the
+  // (ten times the tolerance): the rule without the gate calls it steady at row 6, the
   // gate never.
   const auto rows = plateau_with_shock(
       30, [](int k) { return kShockX - 0.1 * kDiscRadius * k * kRowFlowThroughs; });
   cfd::SteadyState old_rule(cfd::SteadyCriteria::time_accurate(defaults()));
-  EXPECT_EQ(steady_at(old_rule, rows), 11);
+  EXPECT_EQ(steady_at(old_rule, rows), 6);
   cfd::SteadyState rule(blunt_criteria());
   EXPECT_EQ(steady_at(rule, rows), 0);
   EXPECT_NE(rule.why().find("shock not settled: shock drift -0.05"), std::string::npos)
@@ -329,7 +330,7 @@ TEST(ShockDriftGate, AttachedWedgeIsJudgedAsBefore) {
   const auto rows = plateau_with_shock(30, [](int k) { return kShockX - k; });
   cfd::SteadyState rule(
       cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(attached));
-  EXPECT_EQ(steady_at(rule, rows), 11);
+  EXPECT_EQ(steady_at(rule, rows), 6);
   EXPECT_EQ(rule.why().find("shock"), std::string::npos) << rule.why();
 }
 

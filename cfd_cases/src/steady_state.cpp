@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <span>
 
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
@@ -21,6 +22,42 @@ constexpr double kMinTimeSlack = 1e-6;
 // converging.
 constexpr std::size_t kPlateauChecks = 5;
 constexpr double kStillFalling = 0.8;
+
+// The least-squares line v = mean + slope (t - mean of t) through a window,
+// with the sum of squared residuals about it and the spread of t
+// (sum of (t - mean)^2; slope and sse are NaN when it is 0).
+struct WindowLine {
+  double mean = 0, slope = scene::kNaN, sse = scene::kNaN, stt = 0;
+};
+WindowLine fit_window_line(const std::vector<double>& t, const std::vector<double>& v) {
+  const double n = static_cast<double>(t.size());
+  double t_mean = 0;
+  WindowLine l;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    t_mean += t[i] / n;
+    l.mean += v[i] / n;
+  }
+  double stv = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double dt = t[i] - t_mean;
+    l.stt += dt * dt;
+    stv += dt * (v[i] - l.mean);
+  }
+  if (!(l.stt > 0)) return l;
+  l.slope = stv / l.stt;
+  l.sse = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double r = v[i] - l.mean - l.slope * (t[i] - t_mean);
+    l.sse += r * r;
+  }
+  return l;
+}
+
+std::string force_why(const HistoryRow& row, double slope, double flicker, double tol) {
+  if (row.dforce < tol) return fmt::format("dF {:.3g} < {:.3g}", row.dforce, tol);
+  return fmt::format("force trend {:.3g}, flicker {:.3g} <= {:.3g} (dF {:.3g})", slope, flicker,
+                     tol, row.dforce);
+}
 }  // namespace
 
 SteadyCriteria SteadyCriteria::time_accurate(const scene::CfdParams& p) {
@@ -59,22 +96,13 @@ SteadyCriteria SteadyCriteria::iteration_windows(const scene::CfdParams& p,
 // before, which held every run on the floor 2 flow-throughs after it got
 // there (docs/cfd_cases.md, "The force's trend").
 double SteadyState::density_trend() const {
-  const std::size_t n = kPlateauChecks;
-  if (rows_.size() < n) return scene::kNaN;
-  const auto first = rows_.end() - static_cast<std::ptrdiff_t>(n);
-  double t_mean = 0, l_mean = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    if (!(it->drho_l2 > 0)) return scene::kNaN;
-    t_mean += progress(*it) / static_cast<double>(n);
-    l_mean += std::log(it->drho_l2) / static_cast<double>(n);
+  if (rows_.size() < kPlateauChecks) return scene::kNaN;
+  std::vector<double> log_drho;
+  for (const HistoryRow& r : window(kPlateauChecks)) {
+    if (!(r.drho_l2 > 0)) return scene::kNaN;
+    log_drho.push_back(std::log(r.drho_l2));
   }
-  double stt = 0, stl = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    const double dt = progress(*it) - t_mean;
-    stt += dt * dt;
-    stl += dt * (std::log(it->drho_l2) - l_mean);
-  }
-  return stt > 0 ? stl / stt : scene::kNaN;
+  return fit_window_line(window_progress(kPlateauChecks), log_drho).slope;
 }
 
 // The body force of a converged captured-shock solution flickers too: the
@@ -87,41 +115,29 @@ double SteadyState::density_trend() const {
 // least-squares trend sees drift and not flicker; the scatter about the
 // line bounds the flicker, so a force swinging by more than force_tol is
 // never settled whatever its trend.
-namespace {
-std::string force_why(const HistoryRow& row, double slope, double flicker, double tol) {
-  if (row.dforce < tol) return fmt::format("dF {:.3g} < {:.3g}", row.dforce, tol);
-  return fmt::format("force trend {:.3g}, flicker {:.3g} <= {:.3g} (dF {:.3g})", slope, flicker,
-                     tol, row.dforce);
-}
-}  // namespace
-
 SteadyState::ForceTrend SteadyState::force_trend() const {
-  const std::size_t n = kPlateauChecks;
-  if (rows_.size() < n) return {};
-  const auto first = rows_.end() - static_cast<std::ptrdiff_t>(n);
-  double t_mean = 0, fx_mean = 0, fy_mean = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    t_mean += progress(*it) / static_cast<double>(n);
-    fx_mean += it->force.x / static_cast<double>(n);
-    fy_mean += it->force.y / static_cast<double>(n);
+  if (rows_.size() < kPlateauChecks) return {};
+  std::vector<double> fx, fy;
+  for (const HistoryRow& r : window(kPlateauChecks)) {
+    fx.push_back(r.force.x);
+    fy.push_back(r.force.y);
   }
-  double stt = 0, stx = 0, sty = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    const double dt = progress(*it) - t_mean;
-    stt += dt * dt;
-    stx += dt * (it->force.x - fx_mean);
-    sty += dt * (it->force.y - fy_mean);
-  }
-  const double f_mean = std::hypot(fx_mean, fy_mean);
-  if (!(stt > 0) || !(f_mean > 0)) return {};
-  const double sx = stx / stt, sy = sty / stt;
-  double sse = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    const double dt = progress(*it) - t_mean;
-    sse +=
-        std::pow(it->force.x - fx_mean - sx * dt, 2) + std::pow(it->force.y - fy_mean - sy * dt, 2);
-  }
-  return {std::hypot(sx, sy) / f_mean, std::sqrt(sse / static_cast<double>(n - 2)) / f_mean};
+  const std::vector<double> t = window_progress(kPlateauChecks);
+  const WindowLine x = fit_window_line(t, fx), y = fit_window_line(t, fy);
+  const double f_mean = std::hypot(x.mean, y.mean);
+  if (!(x.stt > 0) || !(f_mean > 0)) return {};
+  const double n = static_cast<double>(kPlateauChecks);
+  return {std::hypot(x.slope, y.slope) / f_mean, std::sqrt((x.sse + y.sse) / (n - 2)) / f_mean};
+}
+
+std::span<const HistoryRow> SteadyState::window(std::size_t n) const {
+  return std::span<const HistoryRow>(rows_).last(n);
+}
+
+std::vector<double> SteadyState::window_progress(std::size_t n) const {
+  std::vector<double> t;
+  for (const HistoryRow& r : window(n)) t.push_back(progress(r));
+  return t;
 }
 
 double SteadyState::progress(const HistoryRow& row) const {
@@ -151,35 +167,20 @@ SteadyState::ShockGate SteadyState::shock_gate() {
   const std::size_t n = kShockDriftRows;
   if (rows_.size() < n)
     return {false, fmt::format("shock position over {} of {} rows", rows_.size(), n)};
-  const auto first = rows_.end() - static_cast<std::ptrdiff_t>(n);
-  std::size_t measured = 0;
-  double t_mean = 0, x_mean = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    if (!std::isfinite(it->shock_x)) continue;
-    ++measured;
-    t_mean += progress(*it) / static_cast<double>(n);
-    x_mean += it->shock_x / static_cast<double>(n);
-  }
+  std::vector<double> x;
+  for (const HistoryRow& r : window(n))
+    if (std::isfinite(r.shock_x)) x.push_back(r.shock_x);
+  const std::size_t measured = x.size();
   // No shock ahead of the nose in the whole window: one attached to a
   // pointed nose, nothing on the line to drift.
   if (measured == 0) return {true, "no shock ahead of the nose"};
   if (measured < n)
     return {false, fmt::format("a shock ahead of the nose on {} of the last {} rows", measured, n)};
-  double stt = 0, stx = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    const double dt = progress(*it) - t_mean;
-    stt += dt * dt;
-    stx += dt * (it->shock_x - x_mean);
-  }
-  if (!(stt > 0)) return {false, "shock drift over a window of no length"};
-  const double slope = stx / stt;
-  double sse = 0;
-  for (auto it = first; it != rows_.end(); ++it) {
-    const double r = it->shock_x - x_mean - slope * (progress(*it) - t_mean);
-    sse += r * r;
-  }
+  const WindowLine line = fit_window_line(window_progress(n), x);
+  if (!(line.stt > 0)) return {false, "shock drift over a window of no length"};
+  const double slope = line.slope;
   // Standard error of the slope, with the two fitted parameters taken off.
-  const double se = std::sqrt(sse / static_cast<double>(n - 2) / stt);
+  const double se = std::sqrt(line.sse / static_cast<double>(n - 2) / line.stt);
   rows_.back().shock_drift = slope;
   const bool moving =
       std::abs(slope) > c_.shock_drift_tol && std::abs(slope) > kShockDriftSignificance * se;

@@ -5,6 +5,7 @@
 // is tested on synthetic histories.
 #include <cstddef>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,9 @@ class SteadyState {
     double flicker = std::numeric_limits<double>::quiet_NaN();
   };
   ForceTrend force_trend() const;
+  // The last n rows (n <= rows_.size()) and their progress.
+  std::span<const HistoryRow> window(std::size_t n) const;
+  std::vector<double> window_progress(std::size_t n) const;
   // Least-squares slope of ln(drho_l2) per unit of progress over the same
   // window; NaN until the window is full.
   double density_trend() const;

@@ -175,9 +175,10 @@ bool outflow_can_be_subsonic(const Scene& s) {
   if (post_shock_mach_at_outflow(s) < 1.0) return true;
   if (attached_shock_beta(s) || !sharp_shoulder(*s.body)) return false;
   // A detached shock ahead of a body whose sharp shoulder lies on the outflow
-  // boundary: the sonic line starts at the boundary itself, so the flow
-  // leaves subsonic between the body and the shock (the Mach 2, 30 deg
-  // wedge: Mach 0.35-0.57 over the whole outflow).
+  // boundary (a domain that cuts a wedge at its base; the default domain
+  // keeps the base inside): the sonic line starts at the boundary itself, so
+  // the flow leaves subsonic between the body and the shock (the Mach 2,
+  // 30 deg wedge cut at its base: Mach 0.35-0.57 over the whole outflow).
   // Body and domain compute the station each their own way: equal to round-off.
   constexpr double kOnBoundary = 1e-9;
   return stations(make_body(*s.body)).x_widest >= scene_domain(s).xmax - kOnBoundary * body_length(*s.body);

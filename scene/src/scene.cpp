@@ -246,9 +246,10 @@ Bbox bbox(const std::vector<Vec2>& p) {
   return b;
 }
 
-// Domain for a blunt body of half-height h whose front is at x = xfront, using
-// Billig's cylinder correlation with nose radius h as the shock estimate.
-Domain blunt_domain(double mach, double xfront, double xback, double h, bool symmetric) {
+// Domain for a blunt body of half-height h whose front is at x = xfront and
+// whose outflow boundary is at x = xout, using Billig's cylinder correlation
+// with nose radius h as the shock estimate.
+Domain blunt_domain(double mach, double xfront, double xout, double h, bool symmetric) {
   const double m = std::max(mach, 1.2);
   const double standoff = billig_standoff_cylinder(m) * h;
   Domain d;
@@ -261,7 +262,7 @@ Domain blunt_domain(double mach, double xfront, double xback, double h, bool sym
   constexpr double kUpstreamMargin = 1.6;  // domain edge beyond the granular shock vertex
   const double vertex = kGranularStandoffFactor * standoff;
   d.xmin = xfront - std::max(kUpstreamMargin * vertex, 0.8 * h);
-  d.xmax = xback;
+  d.xmax = xout;
   const double shock_h = billig_shock_y(m, h, d.xmax - (xfront - vertex));
   d.ymax = std::max(1.1 * shock_h, 2.0 * h);
   d.ymin = symmetric ? 0.0 : -d.ymax;
@@ -292,7 +293,14 @@ Domain scene_domain(const Scene& s) {
       d.ymax = std::max(xe * std::tan(std::min(*beta + 10 * kDeg, 80 * kDeg)), 1.5 * ye);
       d.symmetric = true;
     } else {
-      d = blunt_domain(mach, 0.0, xe, ye, true);
+      // Detached: the flow behind the shock turns sonic at the base corner.
+      // Cut there, the outflow leaves subsonic between body and shock, where
+      // no outflow condition holds the shock (it crept upstream by 0.014-0.033
+      // body lengths per flow-through at Mach 2, 30 deg). Past the base the
+      // flow turns supersonic round the corner and the base's dead-water
+      // region closes within about one base height.
+      constexpr double kWakeBaseHeights = 1.0;
+      d = blunt_domain(mach, 0.0, xe + kWakeBaseHeights * 2.0 * ye, ye, true);
     }
   } else {
     const double h = g.symmetric ? bb.ymax : 0.5 * (bb.ymax - bb.ymin);

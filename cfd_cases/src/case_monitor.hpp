@@ -18,7 +18,7 @@ struct Snapshot {
   double time = 0.0;
   std::string name;
   std::vector<double> rho;  // all parts, concatenated
-  scene::Vec2 force;        // pressure force on the body per unit depth
+  scene::Vec2 force;        // pressure force on the forebody (upstream-facing faces) per unit depth
   double wall_pressure_ratio = 0.0;  // NaN unless a wedge
   // The bow shock on the stagnation line; NaN unless measured (ShockProbe).
   ShockReading shock{scene::kNaN, scene::kNaN};

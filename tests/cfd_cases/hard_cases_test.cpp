@@ -143,6 +143,18 @@ cfd::CaseResult run_on_uniform_grid(const scene::Scene& s, const std::string& di
   meshgen::generate_mesh(s, req, dir + "/mesh");
   return cfd::run_case_with_fallback(s, dir + "/mesh", dir + "/case", {});
 }
+
+// A scene's run on its default uniform grid in a fresh scratch directory.
+struct UniformRun {
+  scene::Scene scene;
+  std::string dir;
+  cfd::CaseResult result;
+};
+UniformRun run_scene_on_uniform_grid(const std::string& yaml) {
+  UniformRun u{scene::parse_scene(yaml), cfd_test::scratch_dir(), {}};
+  u.result = run_on_uniform_grid(u.scene, u.dir);
+  return u;
+}
 }  // namespace
 
 TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
@@ -211,11 +223,12 @@ TEST(HardCases, NearSonicDiscRunsWithoutFallbackAndItsCreepingShockIsNotCalledSt
   // standoff 8.3 R against Billig's 6.1 R), so the drift gate holds the run
   // to end_time, not steady. Pinned: a far-field model that settles the
   // shock shows up here.
-  const scene::Scene s = scene::parse_scene(
+  const UniformRun u = run_scene_on_uniform_grid(
       "name: disc_M1_3\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\nmesh: {h_min: "
       "1.0, h_max: 1.0}\n");
-  const std::string d = cfd_test::scratch_dir();
-  const cfd::CaseResult r = run_on_uniform_grid(s, d);
+  const scene::Scene& s = u.scene;
+  const std::string& d = u.dir;
+  const cfd::CaseResult& r = u.result;
   EXPECT_EQ(r.fallback, "");
   EXPECT_EQ(r.start, "freestream");
   EXPECT_EQ(r.outflow, "subsonic");
@@ -251,20 +264,18 @@ TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   // the corner and the shock settles: steady by the drift gate, ahead of the
   // apex but well inside the domain. The base's expansion from the
   // free-stream start diverges under Kurganov, so the fallback carries it.
-  const scene::Scene s = scene::parse_scene(
-      "name: wedge_M2_30\nbody: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\nmesh: {h_min: "
-      "0.16, "
-      "h_max: 0.16}\n");
-  const std::string d = cfd_test::scratch_dir();
-  const cfd::CaseResult r = run_on_uniform_grid(s, d);
-  EXPECT_EQ(r.start, "freestream");
-  EXPECT_EQ(r.outflow, "supersonic");
-  EXPECT_TRUE(r.steady_state_reached);
-  const auto row = last_history_row(r.history_csv);
+  const UniformRun u = run_scene_on_uniform_grid(
+      "name: wedge_M2_30\nbody: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n"
+      "mesh: {h_min: 0.16, h_max: 0.16}\n");
+  EXPECT_EQ(u.result.start, "freestream");
+  EXPECT_EQ(u.result.outflow, "supersonic");
+  EXPECT_TRUE(u.result.steady_state_reached);
+  const auto row = last_history_row(u.result.history_csv);
   EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength);
   const double standoff = -row.at("shock_x");  // apex at x = 0, wedge length 1
   RecordProperty("standoff_lengths", std::to_string(standoff));
   EXPECT_GT(standoff, 0.0);
-  EXPECT_LT(standoff, -0.5 * scene::scene_domain(s).xmin) << "the shock ran towards the inlet";
-  expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
+  EXPECT_LT(standoff, -0.5 * scene::scene_domain(u.scene).xmin)
+      << "the shock ran towards the inlet";
+  expect_finite_positive(cfd::resample_to_lattice(u.scene, u.dir + "/case", 80, 80));
 }

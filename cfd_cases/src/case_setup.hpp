@@ -67,6 +67,8 @@ inline constexpr double kFarFieldRelaxationLength = 1.0;
 std::string far_field_pressure(const scene::Scene& s);
 // The reconstruction limiter (cfd.limiter, resolved for "auto").
 std::string limiter(const scene::Scene& s);
+// The flux scheme (cfd.flux_scheme, resolved for "auto").
+std::string flux_scheme(const scene::Scene& s);
 // Whether the case uses local time stepping (cfd.local_time_stepping,
 // resolved for "auto").
 bool local_time_stepping(const scene::Scene& s);

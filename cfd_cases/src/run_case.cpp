@@ -102,6 +102,8 @@ nlohmann::json CaseResult::summary() const {
   j["np"] = np;
   j["start"] = start;
   j["outflow"] = outflow;
+  j["flux_scheme"] = flux_scheme;
+  j["limiter"] = limiter;
   j["case_dir"] = case_dir;
   j["history_csv"] = history_csv;
   j["fallback"] = fallback.empty() ? nlohmann::json(nullptr) : nlohmann::json(fallback);
@@ -333,6 +335,8 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.np = cs.np;
   r.start = start_at_rest(s) ? "rest" : "freestream";
   r.outflow = subsonic_outflow(s) ? "subsonic" : "supersonic";
+  r.flux_scheme = flux_scheme(s);
+  r.limiter = limiter(s);
   r.wall_pressure_ratio = scene::kNaN;
 
   if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;

@@ -179,9 +179,15 @@ bool outflow_can_be_subsonic(const Scene& s) {
   // keeps the base inside): the sonic line starts at the boundary itself, so
   // the flow leaves subsonic between the body and the shock (the Mach 2,
   // 30 deg wedge cut at its base: Mach 0.35-0.57 over the whole outflow).
+  return !sharp_base_inside_domain(s);
+}
+
+bool sharp_base_inside_domain(const Scene& s) {
+  if (!s.body || !sharp_shoulder(*s.body)) return false;
   // Body and domain compute the station each their own way: equal to round-off.
   constexpr double kOnBoundary = 1e-9;
-  return stations(make_body(*s.body)).x_widest >= scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
+  return stations(make_body(*s.body)).x_widest <
+         scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
 }
 
 }  // namespace scene

@@ -18,7 +18,7 @@ CfdParams parse_cfd(Section& s) {
   p.force_tol = s.number("force_tol", p.force_tol, positive());
   p.local_time_stepping = s.boolean_or_auto("local_time_stepping");
   p.np = static_cast<int>(s.integer("np", p.np, 1, 4096));
-  p.flux_scheme = s.string("flux_scheme", p.flux_scheme, {"Kurganov", "Tadmor"});
+  p.flux_scheme = s.string("flux_scheme", p.flux_scheme, {"auto", "Kurganov", "Tadmor"});
   p.limiter = s.string("limiter", p.limiter, {"auto", "vanLeer", "Minmod"});
   p.min_time = s.number("min_time", p.min_time, non_negative());
   p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));

@@ -263,12 +263,17 @@ TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   // base and one base height of wake inside, the flow turns supersonic round
   // the corner and the shock settles: steady by the drift gate, ahead of the
   // apex but well inside the domain. The base's expansion from the
-  // free-stream start diverges under Kurganov, so the fallback carries it.
+  // free-stream start diverges under Kurganov; the automatic flux is Tadmor
+  // there, which holds without the fallback.
   const UniformRun u = run_scene_on_uniform_grid(
       "name: wedge_M2_30\nbody: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n"
       "mesh: {h_min: 0.16, h_max: 0.16}\n");
   EXPECT_EQ(u.result.start, "freestream");
   EXPECT_EQ(u.result.outflow, "supersonic");
+  EXPECT_EQ(u.result.flux_scheme, "Tadmor");
+  EXPECT_NE(scene::read_file(u.dir + "/case/system/fvSchemes").find("fluxScheme      Tadmor;"),
+            std::string::npos);
+  EXPECT_EQ(u.result.fallback, "") << "the automatic flux should need no restart";
   EXPECT_TRUE(u.result.steady_state_reached);
   const auto row = last_history_row(u.result.history_csv);
   EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength);

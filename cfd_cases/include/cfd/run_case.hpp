@@ -42,6 +42,8 @@ struct CaseResult {
   int np = 1;
   std::string start;    // "rest" or "freestream" (cfd.start, resolved)
   std::string outflow;  // "supersonic" (zeroGradient far field) or "subsonic" (waveTransmissive)
+  std::string flux_scheme;  // cfd.flux_scheme, resolved ("Kurganov" or "Tadmor")
+  std::string limiter;      // cfd.limiter, resolved ("vanLeer" or "Minmod")
   // Empty, or the robust settings the run restarted with after the first
   // attempt diverged, and why (its CPU, wall seconds and steps are included above).
   std::string fallback;

@@ -51,10 +51,11 @@ double correlation_nose_radius(const BodySpec& b);
 bool correlation_is_exact_shape(const BodySpec& b);
 
 // Whether a flow past this body starts at rest rather than in the free
-// stream (cfd.start auto, above the rest-start Mach limit). Wedges: no, their
-// base lies on the outflow boundary, so an impulsive start has no afterbody
-// to open a vacuum behind, and at rest the starting shock creeps in from the
-// inlet (at Mach 2 it travels at 0.26 c). Other bodies: yes (Apollo's
+// stream (cfd.start auto, above the rest-start Mach limit). Wedges: no, an
+// attached wedge's base lies on the outflow boundary, so an impulsive start
+// has no afterbody to open a vacuum behind, and at rest the starting shock
+// creeps in from the inlet (at Mach 2 it travels at 0.26 c); a detached
+// wedge's base lies inside, and cfd's automatic flux is then Tadmor's. Other bodies: yes (Apollo's
 // receding afterbody; discs and polygons as measured in the case studies).
 bool starts_at_rest(const BodySpec& b);
 
@@ -73,5 +74,9 @@ double post_shock_mach_at_outflow(const Scene& s);
 // base corner (its widest station, where the sonic line begins) lies on the
 // outflow boundary.
 bool outflow_can_be_subsonic(const Scene& s);
+// True when the body has a sharp base corner (a wedge's widest station)
+// inside the domain, with wake behind it: the default domain of a wedge
+// whose shock stands off, or a domain override reaching past the base.
+bool sharp_base_inside_domain(const Scene& s);
 
 }  // namespace scene

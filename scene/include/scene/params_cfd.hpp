@@ -16,7 +16,10 @@ struct CfdParams {
   // (LTS's steady stop is not yet trusted to reach the same solution).
   std::optional<bool> local_time_stepping;
   int np = 1;                      // MPI ranks (decomposePar / mpirun / reconstructPar)
-  std::string flux_scheme = "Kurganov";  // Kurganov | Tadmor
+  // Flux: Kurganov | Tadmor | auto (Kurganov, except Tadmor where a
+  // free-stream start meets a sharp base inside the domain: a detached
+  // wedge, whose base expansion diverges under Kurganov).
+  std::string flux_scheme = "auto";
   // Reconstruction limiter: vanLeer | Minmod | auto (vanLeer for
   // attached-shock wedges, Minmod for blunt bodies: with vanLeer the Apollo
   // capsule at Mach 5 diverges at its afterbody).

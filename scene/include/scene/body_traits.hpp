@@ -55,8 +55,9 @@ bool correlation_is_exact_shape(const BodySpec& b);
 // attached wedge's base lies on the outflow boundary, so an impulsive start
 // has no afterbody to open a vacuum behind, and at rest the starting shock
 // creeps in from the inlet (at Mach 2 it travels at 0.26 c); a detached
-// wedge's base lies inside, and cfd's automatic flux is then Tadmor's. Other bodies: yes (Apollo's
-// receding afterbody; discs and polygons as measured in the case studies).
+// wedge's base lies inside the domain (sharp_base_inside_domain). Other
+// bodies: yes (Apollo's receding afterbody; discs and polygons as measured in
+// the case studies).
 bool starts_at_rest(const BodySpec& b);
 
 // Estimated Mach number just behind the shock where it crosses the outflow

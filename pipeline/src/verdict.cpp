@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
+#include <tuple>
 
 #include "json_fields.hpp"
 #include "scene/body_traits.hpp"
@@ -61,6 +63,16 @@ std::vector<CostError> costs(const std::vector<VerdictRun>& runs, bool total,
   return out;
 }
 
+// The smallest and largest primary error among the runs.
+std::pair<double, double> error_range(const std::vector<VerdictRun>& runs) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (const auto& r : runs) {
+    lo = std::min(lo, r.error);
+    hi = std::max(hi, r.error);
+  }
+  return {lo, hi};
+}
+
 // Both families' points; with `total`, each family's predictor as its fixed cost.
 FamilyPair family_pair(const std::vector<VerdictRun>& u, const std::vector<VerdictRun>& c,
                        bool total, double u_predictor, double c_predictor, const WorkPrice* price) {
@@ -70,8 +82,9 @@ FamilyPair family_pair(const std::vector<VerdictRun>& u, const std::vector<Verdi
 
 // The speedups with the price's and the predictor timing's uncertainty drawn
 // in every Monte Carlo sample.
-void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::vector<VerdictRun>& u,
-                     double u_predictor) {
+std::pair<Interval, Interval> priced_speedups(const Verdict& v, const std::vector<VerdictRun>& c,
+                                              const std::vector<VerdictRun>& u, double u_predictor,
+                                              double target) {
   const std::vector<WorkRun> work = work_of(c, u);
   const WorkPrice fitted = v.price;
   const double predictor = v.predictor_cpu;
@@ -91,10 +104,9 @@ void priced_speedups(Verdict& v, const std::vector<VerdictRun>& c, const std::ve
       return family_pair(u, c, total, u_pred, pred, &use);
     };
   };
-  v.speedup_cfd =
-      cost_ratio_at_error(family_pair(u, c, false, 0, 0, &fitted), sampler(false), v.target_error);
-  v.speedup_total = cost_ratio_at_error(family_pair(u, c, true, u_predictor, predictor, &fitted),
-                                        sampler(true), v.target_error);
+  return {cost_ratio_at_error(family_pair(u, c, false, 0, 0, &fitted), sampler(false), target),
+          cost_ratio_at_error(family_pair(u, c, true, u_predictor, predictor, &fitted),
+                              sampler(true), target)};
 }
 }  // namespace
 
@@ -136,22 +148,27 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
   const auto finest = std::min_element(c.begin(), c.end(), [](const VerdictRun& a, const VerdictRun& b) {
     return a.level < b.level;
   });
+  const auto [u_lo, u_hi] = error_range(u);
+  const double c_hi = error_range(c).second;
   v.target_error = finest->error;
-  double u_lo = 1e300, u_hi = 0;
-  for (const auto& r : u) {
-    u_lo = std::min(u_lo, r.error);
-    u_hi = std::max(u_hi, r.error);
+  if (finest->error < u_lo && u_lo <= c_hi) {
+    v.beyond_uniform.error = finest->error;
+    v.target_error = u_lo;
   }
   v.extrapolated = v.target_error < u_lo || v.target_error > u_hi;
   v.measured_cfd = cost_ratio_at_error(family_pair(u, c, false, 0, 0, nullptr), v.target_error);
   v.measured_total = cost_ratio_at_error(
       family_pair(u, c, true, uniform_predictor_cpu, predictor_cpu, nullptr), v.target_error);
-  if (v.priced) {
-    priced_speedups(v, c, u, uniform_predictor_cpu);
-  } else {
-    v.speedup_cfd = v.measured_cfd;
-    v.speedup_total = v.measured_total;
-  }
+  const auto speedups = [&](double target) -> std::pair<Interval, Interval> {
+    if (v.priced) return priced_speedups(v, c, u, uniform_predictor_cpu, target);
+    return {cost_ratio_at_error(family_pair(u, c, false, 0, 0, nullptr), target),
+            cost_ratio_at_error(
+                family_pair(u, c, true, uniform_predictor_cpu, predictor_cpu, nullptr), target)};
+  };
+  std::tie(v.speedup_cfd, v.speedup_total) = speedups(v.target_error);
+  if (std::isfinite(v.beyond_uniform.error))
+    std::tie(v.beyond_uniform.speedup_cfd, v.beyond_uniform.speedup_total) =
+        speedups(v.beyond_uniform.error);
   v.verdict = verdict_of(v.speedup_total);
   v.verdict_cfd = verdict_of(v.speedup_cfd);
   if (!v.priced)
@@ -160,6 +177,13 @@ Verdict make_verdict(const PrimaryError& primary, const std::vector<VerdictRun>&
     v.note = "a family has fewer than 3 usable runs or its error does not fall with cost: no fit";
   else if (v.extrapolated)
     v.note = "the clustered error lies outside the uniform family's range: the uniform fit is extrapolated";
+  else if (std::isfinite(v.beyond_uniform.error))
+    v.note =
+        "the clustered finest error lies below every uniform grid's: the speedup is read at the "
+        "uniform "
+        "finest's error, inside both families' ranges (at the clustered finest, extrapolating the "
+        "uniform "
+        "fit: beyond_uniform_range)";
   return v;
 }
 
@@ -199,6 +223,13 @@ nlohmann::json price_json(const Verdict& v) {
           {"mesh_timing_log_sd", p.mesh_log_sd}};
 }
 
+nlohmann::json beyond_json(const Verdict::BeyondUniform& b) {
+  if (!std::isfinite(b.error)) return nullptr;
+  return {{"target_error", b.error},
+          {"speedup_cfd", interval_json(b.speedup_cfd)},
+          {"speedup_total", interval_json(b.speedup_total)}};
+}
+
 nlohmann::json calibration_json(const Verdict::Calibration& c) {
   if (!std::isfinite(c.cpu_seconds)) return nullptr;
   return {{"cpu_seconds", c.cpu_seconds},
@@ -222,6 +253,7 @@ nlohmann::json verdict_json(const Verdict& v) {
           {"primary_error_reference", v.primary.reference},
           {"target_error", json_number(v.target_error)},
           {"extrapolated", v.extrapolated},
+          {"beyond_uniform_range", beyond_json(v.beyond_uniform)},
           {"speedup_cfd", interval_json(v.speedup_cfd)},
           {"speedup_total", interval_json(v.speedup_total)},
           {"verdict", v.verdict},
@@ -229,9 +261,10 @@ nlohmann::json verdict_json(const Verdict& v) {
           {"predictor_cpu_seconds", v.predictor_cpu},
           {"cost", price_json(v)},
           {"calibration", calibration_json(v.calibration)},
-          {"measured_cpu", {{"speedup_cfd", interval_json(v.measured_cfd)},
-                            {"speedup_total", interval_json(v.measured_total)},
-                            {"verdict", verdict_of(v.measured_total)}}},
+          {"measured_cpu",
+           {{"speedup_cfd", interval_json(v.measured_cfd)},
+            {"speedup_total", interval_json(v.measured_total)},
+            {"verdict", verdict_of(v.measured_total)}}},
           {"families", {{"clustered", fam(v.clustered)}, {"uniform", fam(v.uniform)}}},
           {"note", v.note}};
 }

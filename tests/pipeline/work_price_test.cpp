@@ -102,6 +102,36 @@ TEST(PricedVerdict, ExactTimingsGiveTheWorkRatio) {
   EXPECT_EQ(v.verdict_cfd, "faster");
 }
 
+TEST(PricedVerdict, AClusteredErrorBelowEveryUniformGridIsReadInsideBothRanges) {
+  // Without the uniform 16000-cell run, the clustered finest error lies below
+  // every uniform grid's: the headline reads the uniform finest's error (the
+  // 8000-cell run against the clustered 2000-cell one), inside both ranges,
+  // and the reading at the clustered finest (extrapolated) is kept beside it.
+  Families f = families(0.0, 1);
+  f.uniform.pop_back();
+  const auto v = pipeline::make_verdict(kPrimary, f.clustered, f.uniform, kPredictorCpu);
+  ASSERT_TRUE(v.priced);
+  EXPECT_DOUBLE_EQ(v.target_error, f.uniform.back().error);
+  EXPECT_FALSE(v.extrapolated);
+  EXPECT_DOUBLE_EQ(v.beyond_uniform.error, f.clustered.back().error);
+  const WorkRun u = exact_run(8000, std::lround(20.0 * std::sqrt(8000.0)));
+  const WorkRun c = exact_run(2000, std::lround(20.0 * std::sqrt(2000.0)));
+  // Read at the uniform fit's end, where a straight line through the slightly
+  // curved family (a fixed cost per step) strays most: 15%.
+  constexpr double kEndTolerance = 0.15;
+  EXPECT_NEAR(v.speedup_cfd.value, u.cfd_cpu / c.cfd_cpu, kEndTolerance * u.cfd_cpu / c.cfd_cpu);
+  EXPECT_TRUE(std::isfinite(v.beyond_uniform.speedup_cfd.value));
+  EXPECT_NE(v.note.find("inside both families' ranges"), std::string::npos);
+  const nlohmann::json j = pipeline::verdict_json(v);
+  EXPECT_DOUBLE_EQ(j["beyond_uniform_range"]["target_error"].get<double>(), v.beyond_uniform.error);
+  // With the uniform finest run back, nothing moves.
+  const Families all = families(0.0, 1);
+  const auto w = pipeline::make_verdict(kPrimary, all.clustered, all.uniform, kPredictorCpu);
+  EXPECT_DOUBLE_EQ(w.target_error, all.clustered.back().error);
+  EXPECT_TRUE(std::isnan(w.beyond_uniform.error));
+  EXPECT_TRUE(pipeline::verdict_json(w)["beyond_uniform_range"].is_null());
+}
+
 TEST(PricedVerdict, TwoNoisyTimingsOfTheSameRunsAgree) {
   // The same grids timed twice with 30% scatter per timing: the measured
   // ratios move, the priced ones much less, and the verdicts agree.

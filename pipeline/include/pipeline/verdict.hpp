@@ -2,8 +2,9 @@
 // The verdict of `pipeline run`: does the grid clustered at the predicted
 // shock reach the uniform family's accuracy in less CPU time? Each family's
 // primary error is fitted against CPU cost (log-log, equal_error.hpp) and
-// the cost ratio read at the clustered family's finest error, with a 95%
-// interval; "faster"/"slower" only when the interval excludes 1.
+// the cost ratio read at the clustered family's finest error (or, when that
+// lies below every uniform grid's, at the finest error both families reach),
+// with a 95% interval; "faster"/"slower" only when the interval excludes 1.
 #include <limits>
 #include <string>
 #include <vector>
@@ -48,8 +49,18 @@ struct FamilyFitInfo {
 
 struct Verdict {
   PrimaryError primary;
-  double target_error = 0;      // the clustered family's finest usable error
+  // The clustered family's finest usable error; when it lies below every
+  // uniform grid's and the clustered family reaches the uniform finest's
+  // error, that error instead, so both fits are read inside their range.
+  double target_error = 0;
   bool extrapolated = false;    // target outside the uniform family's error range
+  // With the target moved: the speedups at the clustered finest error itself,
+  // extrapolating the uniform fit past its finest grid (a secondary figure).
+  struct BeyondUniform {
+    double error = scene::kNaN;
+    Interval speedup_cfd{scene::kNaN, scene::kNaN, scene::kNaN};
+    Interval speedup_total{scene::kNaN, scene::kNaN, scene::kNaN};
+  } beyond_uniform;
   Interval speedup_cfd, speedup_total;
   std::string verdict = "not distinguishable";      // on total CPU (predictor and meshing counted)
   std::string verdict_cfd = "not distinguishable";  // on CFD CPU alone

@@ -14,10 +14,6 @@ namespace {
 // neighbouring columns then meet at that angle at most, which is what the
 // strip adds to the grid's non-orthogonality.
 constexpr double kCurvatureCells = 0.1;
-// Where the prediction's ci (the band's half-width) changes along the shock,
-// a cell's length keeps that change under kWidthChangeCells h_min, so the
-// columns' rows do not shear from one column to the next.
-constexpr double kWidthChangeCells = 1.0;
 // Neighbouring along-shock lengths differ by at most this factor.
 constexpr double kAlongGrowth = 1.2;
 // Rows beyond the band grow by kGrowthRows until one reaches l / kEdgeJump:
@@ -30,6 +26,14 @@ constexpr double kStripMargin = 1.0;
 // Columns may not fold: the strip's half-width stays below this fraction of
 // the radius of curvature.
 constexpr double kMaxWidthCurvature = 0.5;
+// A strip's rows span the widest band half-width w along it, so a run whose
+// w varies (a wedge's ci grows with the distance from the apex) is split
+// into strips whose w varies by at most this factor: narrow strips near
+// the apex fit closer to it, and rows never thin below h_min.
+constexpr double kMaxWidthRatio = 2.0;
+// Consecutive strips of one run are this many h_min apart; the isotropic
+// h_min band fills the gap.
+constexpr double kStripGap = 2.0;
 // Fewer stations than this and the run stays isotropic.
 constexpr std::size_t kMinStations = 3;
 // Points checked along each column when trimming.
@@ -86,11 +90,6 @@ struct Polyline {
     if (cb - ca <= 0) return 0.0;
     return std::atan2(std::abs(scene::cross(ta, tb)), scene::dot(ta, tb)) / (cb - ca);
   }
-  // |dw/ds| over [t - half, t + half], clamped to the run.
-  double width_slope(double t, double half) const {
-    const double lo = std::max(t - half, 0.0), hi = std::min(t + half, length());
-    return hi > lo ? std::abs(width(hi) - width(lo)) / (hi - lo) : 0.0;
-  }
   // The piece [a, b] as a run.
   ShockRun piece(double a, double b) const {
     ShockRun r;
@@ -107,8 +106,8 @@ struct Polyline {
   }
 };
 
-// Row offsets at scale 1: the band in equal rows of at most h_min, then
-// growth rows out to l / kEdgeJump, mirrored.
+// Row offsets: the band in equal rows of at most h_min, then growth rows out
+// to l / kEdgeJump, mirrored.
 std::vector<double> make_rows(double w_max, double h_min, double l_max) {
   const int n = std::max(1, static_cast<int>(std::ceil(w_max / h_min - 1e-9)));
   std::vector<double> half{0.0};
@@ -122,6 +121,29 @@ std::vector<double> make_rows(double w_max, double h_min, double l_max) {
   for (auto it = half.rbegin(); it != half.rend(); ++it) rows.push_back(-*it);
   for (std::size_t k = 1; k < half.size(); ++k) rows.push_back(half[k]);
   return rows;
+}
+
+// Arc-length intervals of `line` over which its half-width varies by at most
+// kMaxWidthRatio, `gap` apart, covering the run from end to end.
+std::vector<std::pair<double, double>> width_pieces(const Polyline& line, double gap) {
+  std::vector<std::pair<double, double>> out;
+  double t0 = 0.0;
+  while (t0 < line.length()) {
+    double lo = line.width(t0), hi = lo, end = line.length();
+    for (std::size_t i = 0; i < line.p.size(); ++i) {
+      if (line.s[i] <= t0) continue;
+      lo = std::min(lo, line.w[i]);
+      hi = std::max(hi, line.w[i]);
+      if (hi > kMaxWidthRatio * lo) {
+        // End at the previous vertex, or at this one if none lies inside.
+        end = i > 0 && line.s[i - 1] > t0 ? line.s[i - 1] : line.s[i];
+        break;
+      }
+    }
+    out.emplace_back(t0, end);
+    t0 = end + gap;
+  }
+  return out;
 }
 
 // Distance from p to the region's boundary (up to a cut-off).
@@ -153,9 +175,7 @@ std::vector<double> station_positions(const Polyline& line, const StripRule& rul
   double prev = l_max;
   while (s.back() < line.length()) {
     const double k = line.curvature(s.back(), window);
-    const double dw = line.width_slope(s.back(), window);
     double l = k > 0 ? std::min(l_max, kCurvatureCells / k) : l_max;
-    if (dw > 0) l = std::min(l, kWidthChangeCells * rule.h_min / dw);
     l = std::clamp(std::min(l, prev * kAlongGrowth), rule.h_min, l_max);
     s.push_back(s.back() + l);
     prev = l;
@@ -218,12 +238,11 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
   const double margin = kStripMargin * rule.h_min;
   const double l_max = rule.max_aspect * rule.h_min;
   std::vector<std::vector<Vec2>> placed;
-  for (const ShockRun& run : runs) {
-    if (run.points.size() < 2) {
-      out.uncovered.push_back(run);
-      continue;
-    }
+  const auto lay = [&](const ShockRun& run) {
     const Polyline line(run);
+    // One half-width for the whole strip, the run's widest: scaling the rows
+    // with the local ci would thin them below h_min where the ci narrows
+    // (near a wedge's apex), and the thinnest row sets the time step.
     const double w_max = *std::max_element(run.half_width.begin(), run.half_width.end());
     ShockStrip strip;
     const std::vector<double> s = station_positions(line, rule);
@@ -236,8 +255,6 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     for (const double t : s) {
       strip.centre.push_back(line.at(t));
       strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));
-      strip.scale.push_back(
-          w_max > 0 ? std::max(line.width(t), rule.h_min) / std::max(w_max, rule.h_min) : 1.0);
     }
     std::vector<bool> ok(s.size());
     for (std::size_t i = 0; i < s.size(); ++i)
@@ -246,20 +263,32 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     const auto [a, b] = longest_fit(ok);
     if (b - a < kMinStations) {
       out.uncovered.push_back(run);
-      continue;
+      return;
     }
     ShockStrip kept;
     kept.rows = strip.rows;
     for (std::size_t i = a; i < b; ++i) {
       kept.centre.push_back(strip.centre[i]);
       kept.normal.push_back(strip.normal[i]);
-      kept.scale.push_back(strip.scale[i]);
       if (i + 1 < b) kept.along.push_back(s[i + 1] - s[i]);
     }
     if (a > 0) out.uncovered.push_back(line.piece(0.0, s[a]));
     if (b < s.size()) out.uncovered.push_back(line.piece(s[b - 1], line.length()));
     placed.push_back(kept.outline());
     out.strips.push_back(std::move(kept));
+  };
+  for (const ShockRun& run : runs) {
+    if (run.points.size() < 2) {
+      out.uncovered.push_back(run);
+      continue;
+    }
+    const Polyline line(run);
+    double covered = 0.0;
+    for (const auto& [a, b] : width_pieces(line, kStripGap * rule.h_min)) {
+      if (a > covered) out.uncovered.push_back(line.piece(covered, a));
+      lay(line.piece(a, b));
+      covered = b;
+    }
   }
   return out;
 }
@@ -278,14 +307,14 @@ BandSize::BandSize(const SizeParams& p, const BandLayout& layout,
       const double hi = i + 1 < n ? st.along[i] : st.along[n - 2];
       return 0.5 * (lo + hi);
     };
-    const auto row = [&](std::size_t i, std::size_t j) {
+    const auto row = [&](std::size_t j) {
       const std::size_t k = j == 0 ? 0 : j - 1;
-      return st.scale[i] * (st.rows[k + 1] - st.rows[k]);
+      return st.rows[k + 1] - st.rows[k];
     };
     for (std::size_t i = 0; i < n; ++i) v.push_back(side(i));
-    for (std::size_t j = 1; j < m; ++j) v.push_back(j + 1 == m ? side(n - 1) : row(n - 1, j));
+    for (std::size_t j = 1; j < m; ++j) v.push_back(j + 1 == m ? side(n - 1) : row(j));
     for (std::size_t i = n - 1; i-- > 0;) v.push_back(side(i));
-    for (std::size_t j = m - 1; j-- > 1;) v.push_back(row(0, j));
+    for (std::size_t j = m - 1; j-- > 1;) v.push_back(row(j));
     loop.push_back(loop.front());
     v.push_back(v.front());
     for (double& x : v) x = -x / slope_;

@@ -10,13 +10,13 @@
 // mean size whatever the tensor, so the band is built explicitly instead.
 //
 // Along-shock cell length at a station (the rule, docs/meshgen.md):
-//   l = min(a h_min, kCurvatureCells R, kWidthChangeCells h_min / |dw/ds|)
-// a = mesh.anisotropy, R the shock's radius of curvature and dw/ds the
-// change of the band half-width w (the prediction's ci) along the shock,
-// both measured over a window of a h_min either side; l grows by at most kAlongGrowth
-// from one cell to the next. Rows across the shock: the band (half-width w,
-// ci included) in rows of at most h_min, then kGrowthRows-ratio rows out to a
-// row of l / kEdgeJump, where the isotropic grid (size l there) takes over.
+//   l = min(a h_min, kCurvatureCells R)
+// a = mesh.anisotropy, R the shock's radius of curvature measured over a
+// window of a h_min either side; l grows by at most kAlongGrowth from one
+// cell to the next. Rows across the shock: the band (the run's largest
+// half-width w, the prediction's ci included) in equal rows of at most
+// h_min, the same at every station, then kGrowthRows-ratio rows out to a row
+// of l / kEdgeJump, where the isotropic grid (size l there) takes over.
 #include <cstddef>
 #include <vector>
 
@@ -34,17 +34,14 @@ struct StripRule {
 };
 
 // One structured strip: stations along the shock, each a straight column of
-// nodes along the local normal. Node (i, j) = centre[i] + scale[i] rows[j] normal[i].
+// nodes along the local normal. Node (i, j) = centre[i] + rows[j] normal[i].
 struct ShockStrip {
   std::vector<scene::Vec2> centre, normal;
-  std::vector<double> scale;  // w_i / w_max: the band widens where ci does
-  std::vector<double> rows;   // offsets at scale 1, ascending, symmetric about 0
+  std::vector<double> rows;   // offsets along the normal, ascending, symmetric about 0
   std::vector<double> along;  // station spacing l (one per cell, stations - 1)
 
   std::size_t stations() const { return centre.size(); }
-  scene::Vec2 node(std::size_t i, std::size_t j) const {
-    return centre[i] + (scale[i] * rows[j]) * normal[i];
-  }
+  scene::Vec2 node(std::size_t i, std::size_t j) const { return centre[i] + rows[j] * normal[i]; }
   // Closed outline (no repeat): the j = 0 side forward, the last column up,
   // the top side back, the first column down.
   std::vector<scene::Vec2> outline() const;

@@ -1,15 +1,15 @@
 // generate_mesh: sizes -> gmsh -> OpenFOAM -> checks -> summary, staged in a
 // folder beside OUT and swapped in only when complete.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <limits>
-#include <unistd.h>
-
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <future>
+#include <limits>
 #include <optional>
 
 #include "band_strip.hpp"
@@ -19,14 +19,15 @@
 #include "gmsh_mesher.hpp"
 #include "meshgen/fluid_region.hpp"
 #include "meshgen/mesh.hpp"
-#include "scene/cpu_clock.hpp"
-#include "meshgen/size_field.hpp"
 #include "meshgen/shock_extension.hpp"
+#include "meshgen/size_field.hpp"
 #include "msh_writer.hpp"
 #include "plot.hpp"
 #include "poly_mesh.hpp"
-#include "scene/errors.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/cli.hpp"
+#include "scene/cpu_clock.hpp"
+#include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/staging.hpp"
 
@@ -216,7 +217,7 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
     throw scene::InputError(where + "h_min must be positive and not exceed h_max");
   plan.base.h_body = body_size(r, mp, plan.base, L);
   plan.base.growth = mp.growth;
-  plan.anisotropy = mp.anisotropy;
+  plan.anisotropy = scene::band_anisotropy(s);
   plan.uniform_h = r.h_min ? *r.h_min * L : mp.h_uniform ? *mp.h_uniform * L : mp.h_min * L;
   if (mp.band_width) plan.band_width = *mp.band_width * L;
   plan.curve = r.shock_curve;

@@ -31,6 +31,11 @@ bool reference_is_exact_oblique_shock(const Scene& s) {
   return attached_shock_beta(s).has_value();
 }
 
+double band_anisotropy(const Scene& s) {
+  if (s.mesh.anisotropy) return *s.mesh.anisotropy;
+  return attached_shock_beta(s) ? kStraightShockAnisotropy : 1.0;
+}
+
 bool shock_may_stand_off(const Scene& s) {
   return s.body.has_value() && !attached_shock_beta(s).has_value();
 }

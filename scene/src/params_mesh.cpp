@@ -15,7 +15,7 @@ MeshParams parse_mesh(Section& s) {
   p.h_uniform = s.opt_number("h_uniform", positive());
   p.algorithm = s.string("algorithm", p.algorithm, {"delaunay", "frontal"});
   p.smoothing = static_cast<int>(s.integer("smoothing", p.smoothing, 0, 100));
-  p.anisotropy = s.number("anisotropy", p.anisotropy, {1.0, 50.0, false, false});
+  p.anisotropy = s.opt_number("anisotropy", {1.0, 50.0, false, false});
   p.extend_shock = s.boolean("extend_shock", p.extend_shock);
   if (p.h_min > p.h_max) s.fail("h_min", "must not exceed h_max");
   if (p.h_body && (*p.h_body < p.h_min || *p.h_body > p.h_max))
@@ -35,8 +35,7 @@ void emit_mesh(YAML::Emitter& e, const MeshParams& p) {
   emit_opt(e, "h_uniform", p.h_uniform);
   emit_kv(e, "algorithm", p.algorithm);
   emit_kv(e, "smoothing", p.smoothing);
-  // Written only when set, so scenes without the key read back the same.
-  if (p.anisotropy != 1.0) emit_kv(e, "anisotropy", p.anisotropy);
+  emit_opt(e, "anisotropy", p.anisotropy);
   if (!p.extend_shock) emit_kv(e, "extend_shock", p.extend_shock);
   e << YAML::EndMap;
 }

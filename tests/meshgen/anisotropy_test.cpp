@@ -8,6 +8,7 @@
 
 #include "cli_run.hpp"
 #include "meshgen/mesh.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
 #include "shock_fixtures.hpp"
@@ -31,6 +32,10 @@ constexpr double kMaxThicknessCells = 2.0;
 // checkMesh flags non-orthogonality above 70 deg; rhoCentralFoam (explicit,
 // no non-orthogonal correctors) runs on these grids, kept below this.
 constexpr double kMaxNonOrthogonality = 65.0;
+// The strips' rows are h_min thick or, where ceil(w / h_min) rows share a
+// half-width w of a few h_min, a little thinner; the grid's smallest cell
+// (mean edge length) stays within this fraction of the isotropic grid's.
+constexpr double kMinRowFraction = 0.5;
 // The strips replace most band cells: at most this fraction remains.
 constexpr double kMaxBandCellFraction = 0.8;
 
@@ -80,24 +85,32 @@ TEST(Anisotropy, StraightObliqueShockGetsLongThinBandCells) {
   EXPECT_LT(ja["band_max_aspect_ratio"].get<double>(), kMinAspect);
 }
 
-TEST(Anisotropy, OneLeavesTheGridUnchanged) {
-  const std::string dir = meshgen_test::fresh_dir("aniso_one");
+TEST(Anisotropy, AttachedWedgeDefaultsToStripsAndOneKeepsTheBandIsotropic) {
+  const std::string dir = meshgen_test::fresh_dir("aniso_default");
   const std::string shock = dir + "/shock.csv";
   const scene::Scene s = scene::load_scene(meshgen_test::case_path("wedge_M3_10"));
-  meshgen_test::write_shock_csv(shock, meshgen_test::predicted_shock(s), 0.01);
+  meshgen_test::write_shock_csv(shock, meshgen_test::predicted_shock(s), 0.5 * kHMin);
   for (const char* sub : {"/plain", "/one"}) std::filesystem::create_directories(dir + sub);
   const std::string base =
       "body: {kind: wedge, angle_deg: 10, length: 1.0}\nfreestream: {mach: 3.0}\n";
-  const std::string plain = write_scene(dir + "/plain", base + "mesh: {h_min: 0.02, h_max: 0.1}\n");
+  const std::string sizes = "h_min: " + std::to_string(kHMin) + ", h_max: " + std::to_string(kHMax);
+  const std::string plain = write_scene(dir + "/plain", base + "mesh: {" + sizes + "}\n");
   const std::string one =
-      write_scene(dir + "/one", base + "mesh: {h_min: 0.02, h_max: 0.1, anisotropy: 1}\n");
+      write_scene(dir + "/one", base + "mesh: {" + sizes + ", anisotropy: 1}\n");
   const auto meshgen = [](const std::string& args) {
     return test_support::run_cli(test_support::stage_exe("meshgen"), args);
   };
   ASSERT_EQ(meshgen(plain + " --shock " + shock + " --out " + dir + "/a").code, 0);
   ASSERT_EQ(meshgen(one + " --shock " + shock + " --out " + dir + "/b").code, 0);
-  EXPECT_EQ(scene::read_file(dir + "/a/mesh.msh"), scene::read_file(dir + "/b/mesh.msh"));
-  EXPECT_EQ(summary(dir + "/b")["band_strips"].get<long>(), 0);
+  const nlohmann::json ja = summary(dir + "/a"), jb = summary(dir + "/b");
+  EXPECT_EQ(ja["anisotropy"].get<double>(), scene::kStraightShockAnisotropy);
+  EXPECT_GE(ja["band_strips"].get<long>(), 1);
+  EXPECT_EQ(jb["anisotropy"].get<double>(), 1.0);
+  EXPECT_EQ(jb["band_strips"].get<long>(), 0);
+  EXPECT_LT(jb["band_max_aspect_ratio"].get<double>(), kMinAspect);
+  // The strips' rows are never thinner than the isotropic band's cells
+  // (mean edge length, so a square h_min cell reads about h_min).
+  EXPECT_GE(ja["min_cell_size"].get<double>(), kMinRowFraction * jb["min_cell_size"].get<double>());
 }
 
 TEST(Anisotropy, BadValuesAreRefusedNamingTheKey) {

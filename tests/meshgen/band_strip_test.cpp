@@ -1,5 +1,6 @@
 // Shock-aligned strips (mesh.anisotropy): the along-shock length rule on a
-// straight shock, a circular one and a widening ci. Pure geometry, no gmsh.
+// straight shock and a circular one, and a widening ci split into strips.
+// Pure geometry, no gmsh.
 #include "band_strip.hpp"
 
 #include <gtest/gtest.h>
@@ -18,7 +19,9 @@ constexpr double kHMin = 0.01;
 // The stations are stretched to end on the run's end: every length shrinks
 // by at most one step's worth over the run (under 10% on these runs).
 constexpr double kEndStretch = 0.9;
-// Curvature and ci slope are measured on chords over a window: 5% slack.
+// A strip of n >= 3 cells shrinks them by at most n / (n + 1).
+constexpr double kShortRunStretch = 0.75;
+// Curvature is measured on chords over a window: 5% slack.
 constexpr double kRuleSlack = 1.05;
 constexpr double kExact = 1e-9;
 constexpr int kPoints = 200;
@@ -88,16 +91,42 @@ TEST(BandStrip, CurvedShockGetsCellsOfATenthOfItsRadius) {
   EXPECT_GE(*std::min_element(along.begin(), along.end()), kEndStretch * 0.1 * radius / kRuleSlack);
 }
 
-TEST(BandStrip, WideningCiShortensTheCells) {
+TEST(BandStrip, WideningCiSplitsTheShockIntoStripsWhoseRowsStayAtHMin) {
   const meshgen::FluidRegion region = big_region();
   const Vec2 a{0.5, 1.0}, b{3.0, 2.5};
-  const double len = scene::norm(b - a);
-  const double w0 = 0.05, w1 = 0.25, slope = (w1 - w0) / len;  // w grows by 0.08 per unit length
-  const double aspect = 20.0;  // A h_min = 0.2 > h_min / slope = 0.125
+  const double w0 = 0.05, w1 = 0.25;  // ci grows fivefold along the shock
+  const double aspect = 20.0;
   const meshgen::BandLayout l =
       meshgen::layout_strips({line_run(a, b, w0, w1)}, region, rule(aspect));
-  ASSERT_EQ(l.strips.size(), 1u);
-  for (const double s : l.strips[0].along) EXPECT_LE(s * slope, kHMin * kRuleSlack);
-  // The rows follow the local half-width: thinner where ci is smaller.
-  EXPECT_LT(l.strips[0].scale.front(), l.strips[0].scale.back());
+  // Strips whose ci varies by at most 2x: 0.05-0.1, 0.1-0.2, 0.2-0.25.
+  ASSERT_EQ(l.strips.size(), 3u);
+  const auto w_at = [&](Vec2 p) {
+    return w0 + (w1 - w0) * scene::dot(p - a, b - a) / scene::norm2(b - a);
+  };
+  for (const meshgen::ShockStrip& st : l.strips) {
+    double w_lo = 1e300, w_hi = 0;
+    for (const Vec2 c : st.centre) {
+      w_lo = std::min(w_lo, w_at(c));
+      w_hi = std::max(w_hi, w_at(c));
+    }
+    // The band: equal rows out from the shock (the centre row index is m / 2).
+    const std::size_t mid = st.rows.size() / 2;
+    ASSERT_NEAR(st.rows[mid], 0.0, kExact);
+    const double row = st.rows[mid + 1] - st.rows[mid];
+    std::size_t k = mid + 1;
+    while (k + 1 < st.rows.size() && std::abs(st.rows[k + 1] - st.rows[k] - row) < kExact) ++k;
+    const double band = st.rows[k];
+    // Every column spans the widest ci along its strip, in rows of at most
+    // h_min and, that width being at least 5 h_min, at least 4/5 of it: a
+    // narrow ci elsewhere never thins them (the thinnest row sets the step).
+    EXPECT_GE(band, w_hi * (1 - kExact));
+    EXPECT_LE(band, 2.0 * w_lo + kHMin);
+    EXPECT_LE(row, kHMin * (1 + kExact));
+    EXPECT_GE(row, 0.8 * kHMin);
+    // The ci's change does not shorten the cells: a straight shock keeps the
+    // full aspect, less the end stretch of a strip only a few cells long.
+    for (const double len : st.along) EXPECT_GE(len, kShortRunStretch * aspect * kHMin);
+  }
+  // The gaps between strips keep the isotropic band.
+  EXPECT_EQ(l.uncovered.size(), 2u);
 }

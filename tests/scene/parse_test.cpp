@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
 
@@ -38,6 +39,28 @@ TEST(Parse, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.granular.restitution, 1.0);
   EXPECT_EQ(s.granular.lattice_nx, 200);
   EXPECT_FALSE(s.box.has_value());
+}
+
+TEST(Parse, BandAnisotropyDefaultsToStripsOnlyOnAnAttachedShock) {
+  // Attached oblique shock (M3, 10 deg): straight, strips by default.
+  EXPECT_DOUBLE_EQ(scene::band_anisotropy(parse_scene(kMinimal, "w.yaml")),
+                   scene::kStraightShockAnisotropy);
+  // Beyond the maximum deflection (M2, 30 deg) the shock stands off: isotropic.
+  EXPECT_DOUBLE_EQ(scene::band_anisotropy(parse_scene(
+                       "body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n", "d.yaml")),
+                   1.0);
+  EXPECT_DOUBLE_EQ(scene::band_anisotropy(parse_scene(
+                       "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n", "c.yaml")),
+                   1.0);
+  // The scene's own value wins either way.
+  EXPECT_DOUBLE_EQ(scene::band_anisotropy(
+                       parse_scene(std::string(kMinimal) + "mesh: {anisotropy: 1}\n", "w1.yaml")),
+                   1.0);
+  EXPECT_DOUBLE_EQ(
+      scene::band_anisotropy(parse_scene(
+          "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\nmesh: {anisotropy: 4}\n",
+          "c4.yaml")),
+      4.0);
 }
 
 TEST(Parse, ResolvedYamlRoundTrips) {

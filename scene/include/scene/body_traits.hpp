@@ -50,6 +50,15 @@ double correlation_nose_radius(const BodySpec& b);
 // True when that radius is the body's own nose radius (no approximation).
 bool correlation_is_exact_shape(const BodySpec& b);
 
+// The band cells' along/across aspect meshgen lays the shock-aligned strips
+// with: mesh.anisotropy where the scene sets it; otherwise
+// kStraightShockAnisotropy for a body carrying an attached oblique shock
+// (a straight shock, where cells that long resolve all it varies along it)
+// and 1 (the isotropic band) for a bow shock, whose strips have not been
+// measured through the pipeline.
+inline constexpr double kStraightShockAnisotropy = 10.0;
+double band_anisotropy(const Scene& s);
+
 // Whether a flow past this body starts at rest rather than in the free
 // stream (cfd.start auto, above the rest-start Mach limit). Wedges: no, an
 // attached wedge's base lies on the outflow boundary, so an impulsive start

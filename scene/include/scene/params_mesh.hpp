@@ -16,7 +16,9 @@ struct MeshParams {
   std::optional<double> h_uniform;   // cell size of the uniform grid; default h_min
   std::string algorithm = "delaunay";  // gmsh 2D algorithm: delaunay (fast) | frontal (better cells)
   int smoothing = 1;                 // gmsh Laplacian smoothing passes (~2 s CPU per 100k cells each)
-  double anisotropy = 1.0;           // max along/across aspect of band cells; 1 = isotropic band
+  // Max along/across aspect of band cells; 1 = isotropic band; unset: the
+  // body's default (scene::band_anisotropy).
+  std::optional<double> anisotropy;
   bool extend_shock = true;          // carry the band along the shock's end tangents to the region's edge
   // Neither h_min nor h_max in the scene: `pipeline run` may coarsen both
   // together so the run's estimated cost fits pipeline.budget_cpu_seconds.

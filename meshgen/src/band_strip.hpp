@@ -79,6 +79,16 @@ class BandSize {
   double h_max_;
 };
 
+// Cells of a grid laid round strips, before gmsh runs: the strips' own
+// cells exactly, and estimate_cells' sum(dA / h^2) of `size` over the region
+// outside them (the caller's cells per h^2 turn it into cells).
+struct StripGridCount {
+  double strip_cells = 0.0;
+  double unstructured = 0.0;  // sum(dA / h^2) outside the strips
+};
+StripGridCount count_cells(const BandLayout& layout, const BandSize& size,
+                           const FluidRegion& region);
+
 // Band cell shape in the local shock frame (the nearest shock segment):
 // aspect = the larger over the smaller of the cell's extents along the
 // shock and across it; thickness = its extent across the shock.

@@ -145,6 +145,20 @@ struct Plan {
     if (size_lattice) return SizeField(z.params, size_lattice, z.scale * region.length_scale, region.body.polyline);
     return SizeField(z.params, z.runs, region.body.polyline);
   }
+  StripRule strip_rule(const Sizing& z) const {
+    return {z.params.h_min, anisotropy, z.params.h_max, z.params.growth};
+  }
+  // estimate_cells' sum(dA / h^2) of the grid this sizing makes, so that
+  // estimate x cells_per_h2 is its cell count: with strips, their cells are
+  // counted exactly (entering divided by cells_per_h2) and the isotropic
+  // field that grows from their outlines is summed round them.
+  double estimate(const Sizing& z, const FluidRegion& region, double cells_per_h2) const {
+    if (!strips()) return estimate_cells(field(z, region), region);
+    const BandLayout band = layout_strips(z.runs, region, strip_rule(z));
+    const StripGridCount c =
+        count_cells(band, BandSize(z.params, band, region.body.polyline), region);
+    return c.unstructured + c.strip_cells / cells_per_h2;
+  }
 };
 
 // Scale factor whose estimated count (times the calibration) hits the target.
@@ -152,7 +166,7 @@ double solve_scale(const Plan& plan, const FluidRegion& region, double target, d
   double lo = 1e-3, hi = 1e3;  // wide bracket on a monotone (decreasing) count
   for (int it = 0; it < 40; ++it) {
     const double mid = std::sqrt(lo * hi);
-    const double n = calibration * estimate_cells(plan.field(plan.at(mid, region), region), region);
+    const double n = calibration * plan.estimate(plan.at(mid, region), region, calibration);
     (n > target ? lo : hi) = mid;
     if (hi / lo < 1.002) break;
   }
@@ -248,11 +262,10 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   const double flow_area = region.domain.width() * region.domain.height();
   {
     // The estimate at the requested sizes, before anything is written.
-    const double scale0 = plan.target ? solve_scale(plan, region, *plan.target, mp.recombine ? kCellsPerH2Quads
-                                                                                             : kCellsPerH2Triangles)
-                                      : 1.0;
+    const double cells_per_h2 = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
+    const double scale0 = plan.target ? solve_scale(plan, region, *plan.target, cells_per_h2) : 1.0;
     const Sizing z = plan.at(scale0, region);
-    c.estimate = estimate_cells(plan.field(z, region), region);
+    c.estimate = cells_per_h2 * plan.estimate(z, region, cells_per_h2);
     check_estimate(where, c.estimate, plan.uniform ? z.uniform_h : z.params.h_min, flow_area);
   }
   return c;
@@ -317,7 +330,7 @@ PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField
   const std::string scratch = (stage / "plane_mesh.bin").string();
   if (!plan.strips()) return mesh_with_gmsh_in_child(region, field, job, scratch);
   const SizeParams& p = m.sizing.params;
-  m.band = layout_strips(m.sizing.runs, region, {p.h_min, plan.anisotropy, p.h_max, p.growth});
+  m.band = layout_strips(m.sizing.runs, region, plan.strip_rule(m.sizing));
   const BandSize size(p, m.band, region.body.polyline);
   const SizeFunction h = [&size](Vec2 q) { return size(q); };
   return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
@@ -336,7 +349,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
                               "beyond the domain)");
     const SizeField field = plan.field(m.sizing, region);
-    m.estimate = estimate_cells(field, region);
+    m.estimate = plan.estimate(m.sizing, region, calibration);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
     job.pieces = static_cast<int>(std::clamp(std::floor(m.estimate * calibration / kCellsPerPiece), 1.0,
                                              static_cast<double>(kMaxPieces)));

@@ -181,13 +181,18 @@ bool SizeField::in_band(Vec2 p) const {
 }
 
 double estimate_cells(const SizeField& f, const FluidRegion& region) {
+  return estimate_cells([&f](Vec2 p) { return f(p); }, region, [](Vec2) { return false; });
+}
+
+double estimate_cells(const std::function<double(Vec2)>& f, const FluidRegion& region,
+                      const std::function<bool(Vec2)>& skip) {
   const scene::Domain& d = region.domain;
   const double dx = d.width() / kEstimateLattice, dy = d.height() / kEstimateLattice;
   double n = 0.0;
   for (int j = 0; j < kEstimateLattice; ++j)
     for (int i = 0; i < kEstimateLattice; ++i) {
       const Vec2 p{d.xmin + (i + 0.5) * dx, d.ymin + (j + 0.5) * dy};
-      if (!region.contains(p)) continue;
+      if (!region.contains(p) || skip(p)) continue;
       const double h = f(p);
       n += dx * dy / (h * h);
     }

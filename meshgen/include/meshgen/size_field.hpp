@@ -16,6 +16,7 @@
 // the outermost centres beyond them): the same body rule as the clustered
 // grids, whatever made the lattice.
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -116,5 +117,9 @@ class SizeField {
 
 // Estimated number of cells sum(dA / h^2) over the region, on a fine lattice.
 double estimate_cells(const SizeField& f, const FluidRegion& region);
+// The same sum for any size function, leaving out the points where `skip`
+// holds (parts of the grid counted otherwise, such as structured strips).
+double estimate_cells(const std::function<double(scene::Vec2)>& h, const FluidRegion& region,
+                      const std::function<bool(scene::Vec2)>& skip);
 
 }  // namespace meshgen

@@ -34,6 +34,11 @@ constexpr double kMaxWidthRatio = 2.0;
 // Consecutive strips of one run are this many h_min apart; the isotropic
 // h_min band fills the gap.
 constexpr double kStripGap = 2.0;
+// Every corner of a strip's quads turns the same way, at an angle whose sine
+// is at least this (30 to 150 deg): a noisy curve's normals can swing enough
+// between stations to fold the outer rows even where its smoothed curvature
+// passes, and gmsh would mesh round a self-overlapping strip.
+constexpr double kMinCornerSine = 0.5;
 // Fewer stations than this and the run stays isotropic.
 constexpr std::size_t kMinStations = 3;
 // Points checked along each column when trimming.
@@ -201,16 +206,32 @@ bool column_fits(const ShockStrip& strip, std::size_t i, const FluidRegion& regi
   return true;
 }
 
-// The longest run of consecutive fitting stations: [first, last].
-std::pair<std::size_t, std::size_t> longest_fit(const std::vector<bool>& ok) {
+// Whether the quads between columns i and i + 1 are sound: convex, turning
+// the way (along, normal) does, no corner sharper than kMinCornerSine allows.
+bool quads_sound(const ShockStrip& strip, std::size_t i) {
+  for (std::size_t j = 0; j + 1 < strip.rows.size(); ++j) {
+    const Vec2 q[4] = {strip.node(i, j), strip.node(i + 1, j), strip.node(i + 1, j + 1),
+                       strip.node(i, j + 1)};
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 e1 = q[(k + 1) % 4] - q[k], e2 = q[(k + 2) % 4] - q[(k + 1) % 4];
+      if (scene::cross(e1, e2) < kMinCornerSine * scene::norm(e1) * scene::norm(e2)) return false;
+    }
+  }
+  return true;
+}
+
+// The longest run of consecutive fitting stations whose neighbours are
+// joined by sound quads (joined[i]: stations i and i + 1): [first, last).
+std::pair<std::size_t, std::size_t> longest_fit(const std::vector<bool>& ok,
+                                                const std::vector<bool>& joined) {
   std::size_t best_a = 0, best_n = 0;
   for (std::size_t i = 0; i < ok.size();) {
     if (!ok[i]) {
       ++i;
       continue;
     }
-    std::size_t j = i;
-    while (j < ok.size() && ok[j]) ++j;
+    std::size_t j = i + 1;
+    while (j < ok.size() && ok[j] && joined[j - 1]) ++j;
     if (j - i > best_n) {
       best_n = j - i;
       best_a = i;
@@ -260,7 +281,9 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     for (std::size_t i = 0; i < s.size(); ++i)
       ok[i] = line.curvature(s[i], l_max) * half_width <= kMaxWidthCurvature &&
               column_fits(strip, i, region, dist, placed, margin);
-    const auto [a, b] = longest_fit(ok);
+    std::vector<bool> joined(s.size(), false);
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) joined[i] = quads_sound(strip, i);
+    const auto [a, b] = longest_fit(ok, joined);
     if (b - a < kMinStations) {
       out.uncovered.push_back(run);
       return;

@@ -120,6 +120,28 @@ TEST(Anisotropy, AttachedWedgeDefaultsToStripsAndOneKeepsTheBandIsotropic) {
   EXPECT_GE(ja["min_cell_size"].get<double>(), kMinRowFraction * jb["min_cell_size"].get<double>());
 }
 
+// A granular bow shock is a noisy polyline whose direction can swing between
+// stations more than its smoothed curvature says: on this recorded one
+// (apollo_M5's `pipeline run`, its band half-widths as the pipeline widened
+// them) a wide strip folded its outer rows near the axis and gmsh's grid
+// overlapped itself. Strips now stop where their quads would fold.
+TEST(Anisotropy, ANoisyBowShockMeshesWithStripsThatDoNotFold) {
+  const std::string dir = meshgen_test::fresh_dir("aniso_bow");
+  scene::Scene s = scene::load_scene(meshgen_test::case_path("apollo_M5"));
+  s.mesh.anisotropy = kAnisotropy;
+  meshgen::MeshRequest r = meshgen::request_from_shock_csv(
+      std::string(SOURCE_DIR) + "/tests/data/apollo_M5_bow_shock_band.csv");
+  constexpr double kBowHMin = 0.02, kBowHMax = 0.1;  // the case study's finest clustered level
+  r.h_min = kBowHMin;
+  r.h_max = kBowHMax;
+  const meshgen::MeshResult m = meshgen::generate_mesh(s, r, dir);
+  const nlohmann::json j = summary(dir);
+  EXPECT_TRUE(m.check_mesh_ok) << j.value("check_mesh_failures", "");
+  EXPECT_LT(m.max_non_orthogonality, kMaxNonOrthogonality);
+  EXPECT_GE(j["band_strips"].get<long>(), 1);
+  EXPECT_GE(j["band_max_aspect_ratio"].get<double>(), kMinAspect);
+}
+
 TEST(Anisotropy, BadValuesAreRefusedNamingTheKey) {
   const std::string dir = meshgen_test::fresh_dir("aniso_refuse");
   const std::string shock = dir + "/shock.csv";

@@ -195,7 +195,7 @@ void check_sizes(const std::string& where, double h_min_rel, double h_max_rel, s
 void check_estimate(const std::string& where, double estimate, double h_min, double area) {
   if (std::isfinite(estimate) && estimate <= kMaxCells) return;
   throw scene::InputError(where + "the grid would have about " + fmt_g(estimate) + " cells (flow area " + fmt_g(area) +
-                          " over h_min^2 = " + fmt_g(h_min * h_min) + " at the finest) , above meshgen's limit of " +
+                          " over h_min^2 = " + fmt_g(h_min * h_min) + " at the finest), above meshgen's limit of " +
                           fmt_g(kMaxCells) + "; raise mesh.h_min / mesh.h_max or lower the target");
 }
 

@@ -5,7 +5,8 @@
 // shock's drift (least-squares slope over the gate's window) there; the
 // numbers of docs/reliability.md ("Bow shocks that drift").
 //
-//   steady_replay [--rows] [--csv OUTDIR] [--default-tolerances] [--errors] CASEDIR...
+//   steady_replay [--rows] [--csv OUTDIR] [--default-tolerances] [--errors] [--error-history]
+//                 CASEDIR...
 //
 // CASEDIR: a `cfd run` case (scene.yaml, history.csv, the time directories),
 // only read. --rows also prints each row's shock position and drift; --csv
@@ -15,7 +16,9 @@
 // of the case's own (diagnostic runs that disabled the rule); --errors also
 // measures the verdict's primary error at the current rule's stop and at the
 // recorded run's last written time (its stop), each from that time and the
-// one before, as the pipeline measures a finished grid.
+// one before, as the pipeline measures a finished grid; --error-history
+// measures it at every written time (error against steps: where a run
+// that ignored the rule would have reached a given error).
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -106,7 +109,7 @@ pipeline::MeasuredError error_at(const scene::Scene& s, const std::string& case_
 }
 
 struct Options {
-  bool print_rows = false, default_tolerances = false, errors = false;
+  bool print_rows = false, default_tolerances = false, errors = false, error_history = false;
   std::string csv_dir;
 };
 
@@ -218,6 +221,17 @@ void replay(const std::string& case_dir, const Options& o) {
         static_cast<double>(steps_at(rec, stop)) / static_cast<double>(rec.steps.rbegin()->second),
         at_stop.value / at_end.value - 1);
   }
+  if (o.error_history) {
+    const std::string primary = pipeline::primary_error_for(s).name;
+    std::printf("  %s at every written time (progress in flow-throughs, steps, error +- change)\n",
+                primary.c_str());
+    for (std::size_t k = 0; k < row_time.size(); ++k) {
+      const pipeline::MeasuredError e = error_at(s, case_dir, primary, row_time[k]);
+      std::printf("    %6.2f %7ld %.5g +- %.2g%s\n", new_rule.progress(rows[k]),
+                  steps_at(rec, row_time[k]), e.value, e.uncertainty,
+                  static_cast<int>(k) == new_at ? "  <- rule's stop" : "");
+    }
+  }
 }
 
 }  // namespace
@@ -232,6 +246,10 @@ int main(int argc, char** argv) {
     }
     if (a == "--errors") {
       o.errors = true;
+      continue;
+    }
+    if (a == "--error-history") {
+      o.error_history = true;
       continue;
     }
     if (a == "--default-tolerances") {

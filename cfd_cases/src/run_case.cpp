@@ -146,7 +146,8 @@ Schedule schedule(const scene::Scene& s, const CaseOptions& o, const Mesh2D& mes
   cs.np = o.np > 1 ? o.np : p.np;
   cs.lts = o.local_time_stepping.value_or(local_time_stepping(s));
   cs.flow_through = d.width() / f.mach;
-  cs.dt_ref = free_stream_time_step(mesh, f, p.max_co);
+  cs.max_co = cs.lts ? p.max_co * kLtsCourantFactor : p.max_co;
+  cs.dt_ref = free_stream_time_step(mesh, f, cs.max_co);
   cs.lts_smoothing = o.lts_smoothing.value_or(kLtsSmoothingCoeff);
   // LTS marches in pseudo-time, each step advancing it by dt_ref, the
   // smallest cell's step; a flow-through of pseudo-time is then as many
@@ -155,7 +156,7 @@ Schedule schedule(const scene::Scene& s, const CaseOptions& o, const Mesh2D& mes
   // at the local Courant number needs to cross the domain), and end_time,
   // the written times (one per window of write_steps iterations) and the
   // per-flow-through measures all use that count.
-  out.lts_steps = lts_steps_per_flow_through(mesh, f, p.max_co, d.width());
+  out.lts_steps = lts_steps_per_flow_through(mesh, f, cs.max_co, d.width());
   out.norm_time = cs.lts ? static_cast<double>(out.lts_steps) * cs.dt_ref : cs.flow_through;
   cs.end_time = p.end_time * out.norm_time;
   cs.write_interval = p.write_interval * out.norm_time;

@@ -33,6 +33,11 @@ struct SteadyCriteria {
   int steady_checks = 2;     // consecutive rows that must pass
   SteadyClock clock = SteadyClock::flow_throughs;
   long steps_per_flow_through = 0;  // iterations clock only
+  // The noise-floor branch (density change no longer falling, force
+  // settled) counts only while the density change is below
+  // plateau_cap x steady_tol (infinite: any plateau; steady_state.cpp says
+  // why LTS needs one).
+  double plateau_cap = std::numeric_limits<double>::infinity();
   // Bow-shock drift gate, for bodies whose shock may stand off (0: none, as
   // for attached shocks): no row passes while the shock on the stagnation
   // line (HistoryRow::shock_x) moves, by its least-squares slope over the

@@ -196,6 +196,24 @@ TEST(SteadyState, IterationClockCountsStepsNotPseudoTime) {
   EXPECT_DOUBLE_EQ(lts.progress(rows[4]), 1.0);
 }
 
+TEST(SteadyState, IterationClockTakesAPlateauOnlyNearTheNoiseFloor) {
+  // A clustered grid under LTS: the coarse cells settle first and the
+  // density change stalls at 0.45 (9x steady_tol) with a still body force
+  // while the fine band is still converging; then it falls to its floor.
+  const auto rows = history(30, [](int k) {
+    const double noise = (k % 2 == 0 ? 0.05 : -0.05);
+    const double drho = k <= 14 ? 0.45 : 0.07;
+    return Sample{drho * (1.0 + noise), 5e-3, kForce * (1.0 + 1e-4 * noise)};
+  });
+  cfd::SteadyState ta(cfd::SteadyCriteria::time_accurate(defaults()));
+  EXPECT_EQ(steady_at(ta, rows), 6);  // time-accurately any plateau counts
+  cfd::SteadyState lts(cfd::SteadyCriteria::iteration_windows(defaults(), kStepsPerFlowThrough));
+  // Under LTS the false plateau does not count; the floor at 0.07 does,
+  // once a whole window of rows sits on it (rows 15-19) and twice.
+  EXPECT_EQ(steady_at(lts, rows), 20);
+  EXPECT_NE(lts.why().find("noise floor"), std::string::npos) << lts.why();
+}
+
 TEST(SteadyState, IterationClockTooEarlyCountsIterations) {
   const auto rows = history(1, [](int) { return Sample{1e-3, 1e-4}; });
   cfd::SteadyState lts(cfd::SteadyCriteria::iteration_windows(defaults(), kStepsPerFlowThrough));

@@ -107,12 +107,11 @@ std::string flux_scheme(const scene::Scene& s) {
 }
 
 bool local_time_stepping(const scene::Scene& s) {
-  // auto is time-accurate for every flow. At half max_co LTS reaches the
-  // time-accurate error on wedge grids and costs 1.8-2.0x less CPU at equal
-  // error on clustered ones, but 0.90-1.45x on uniform ones (a uniform
-  // grid's local steps differ only by |U| + c), so the families are
-  // compared time-accurately; a coarse disc started at rest diverged under
-  // LTS and Apollo's afterbody settled elsewhere (docs/bench_cfd.md).
+  // auto is time-accurate for every flow. At half max_co LTS costs 1.8-2.6x
+  // less CPU at equal error on clustered grids but 0.90-1.45x on uniform
+  // ones (a uniform grid's local steps differ only by |U| + c), and three
+  // uniform disc grids of eight, started at rest, diverged under it
+  // (docs/bench_cfd.md).
   return s.cfd.local_time_stepping.value_or(false);
 }
 

@@ -44,8 +44,8 @@ inline constexpr double kLtsSmoothingCoeff = 1.0;
 // (0.3) the captured shock of a wedge never settled: the finest M5/20 grids
 // of both families cycled with an L1 density error 20-30 % above the
 // time-accurate steady state's for 6 iteration flow-throughs (clustered
-// 0.0064-0.0072 against 0.0057, uniform 0.0127-0.0147 against 0.0111). At
-// half of it they settle within 3-6 % of it (docs/bench_cfd.md, "The LTS
+// 0.0067-0.0072 against 0.0057, uniform 0.0127-0.0147 against 0.0111). At
+// half of it they settle within 1-6 % of it (docs/bench_cfd.md, "The LTS
 // limit cycle"), so LTS runs at this fraction of cfd.max_co.
 inline constexpr double kLtsCourantFactor = 0.5;
 

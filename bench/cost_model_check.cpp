@@ -113,15 +113,21 @@ void fit(const std::vector<Run>& runs) {
   for (const auto& r : runs) ss += std::pow(std::log(r.cfd_cpu / (r.steps * (a + b * r.cells))), 2);
   std::printf("runs %zu: CPU per step %.3g s, per cell-step %.3g s (log sd of one timing %.2f)\n", runs.size(), a, b,
               std::sqrt(ss / static_cast<double>(runs.size())));
-  for (const bool attached : {true, false}) {
-    std::vector<double> ft, f;
-    for (const auto& r : runs)
-      if (r.attached == attached) ft.push_back(r.flow_throughs), f.push_back(r.step_fraction);
-    if (ft.empty()) continue;
-    std::printf("%-9s %3zu runs: flow-throughs to steady median %.2f (max %.2f); step fraction median %.2f (min %.2f)\n",
-                attached ? "attached" : "bow shock", ft.size(), median(ft), *std::max_element(ft.begin(), ft.end()),
-                median(f), *std::min_element(f.begin(), f.end()));
-  }
+  for (const bool attached : {true, false})
+    for (const char* family : {"", "uniform", "clustered"}) {
+      std::vector<double> ft, f;
+      for (const auto& r : runs)
+        if (r.attached == attached && r.label.find(family) != std::string::npos)
+          ft.push_back(r.flow_throughs), f.push_back(r.step_fraction);
+      if (ft.empty()) continue;
+      std::printf(
+          "%-9s %-9s %3zu runs: flow-throughs to steady median %.2f (max %.2f); step fraction "
+          "median %.2f "
+          "(%.2f-%.2f)\n",
+          attached ? "attached" : "bow shock", *family ? family : "all", ft.size(), median(ft),
+          *std::max_element(ft.begin(), ft.end()), median(f), *std::min_element(f.begin(), f.end()),
+          *std::max_element(f.begin(), f.end()));
+    }
 }
 
 void check(const std::vector<Run>& runs) {

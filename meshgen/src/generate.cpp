@@ -43,9 +43,12 @@ namespace {
 constexpr double kTargetTolerance = 0.10;
 constexpr double kTargetRetry = 0.05;
 constexpr int kMaxTargetAttempts = 4;
-// Cells of a frontal quad mesh cover about h^2 each; a triangle about h^2/2
-// (starting guesses, corrected from the first mesh).
-constexpr double kCellsPerH2Quads = 1.0;
+// Cells per h^2 of area: gmsh's recombined quad-dominant grids hold 1.5
+// (measured / integrated 1.47-1.57 over every uniform, isotropic-band and
+// strip grid of the recorded case-study runs, docs/meshgen.md); a triangle
+// covers about h^2/2. Starting guesses, corrected from the first mesh when a
+// target count is set.
+constexpr double kCellsPerH2Quads = 1.5;
 constexpr double kCellsPerH2Triangles = 2.0;
 // Clipping the shock curve: crossings located to this fraction of h_min.
 constexpr double kClipResolutionCells = 0.25;
@@ -57,14 +60,13 @@ constexpr double kClipResolutionCells = 0.25;
 constexpr double kMaxCells = 5e6;
 constexpr double kMinCellSize = 1e-5;
 // Large grids are meshed as pieces between vertical cuts (region_split.hpp),
-// one per kCellsPerPiece estimated cells (the size field's integral, about
-// 2/3 of a recombined grid's cells), up to kMaxPieces, on kGmshThreads
+// one per kCellsPerPiece estimated cells, up to kMaxPieces, on kGmshThreads
 // threads (the 2 cores meshgen's time budget is set for). gmsh's 2D
 // meshing costs more than linearly in a surface's cells: wedge_M3_10 at
 // 108k cells, gmsh CPU s (min of 3, loaded host) 9.5 whole, 8.2 in 2
 // pieces, 6.6 in 4, 5.2 in 8 (docs/meshgen.md). Grids below 2
 // kCellsPerPiece stay whole, as before the cuts.
-constexpr double kCellsPerPiece = 8000.0;
+constexpr double kCellsPerPiece = 12000.0;
 constexpr int kMaxPieces = 8;
 constexpr int kGmshThreads = 2;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
@@ -349,12 +351,12 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
                               "beyond the domain)");
     const SizeField field = plan.field(m.sizing, region);
-    m.estimate = plan.estimate(m.sizing, region, calibration);
+    m.estimate = calibration * plan.estimate(m.sizing, region, calibration);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
-    job.pieces = static_cast<int>(std::clamp(std::floor(m.estimate * calibration / kCellsPerPiece), 1.0,
-                                             static_cast<double>(kMaxPieces)));
-    check_estimate(where, m.estimate * calibration,
-                   plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_min, flow_area);
+    job.pieces = static_cast<int>(
+        std::clamp(std::floor(m.estimate / kCellsPerPiece), 1.0, static_cast<double>(kMaxPieces)));
+    check_estimate(where, m.estimate, plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_min,
+                   flow_area);
     stop_if_interrupted("before meshing", out_dir);
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu_before = scene::children_cpu_seconds();
@@ -374,7 +376,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
                             " not met within 10% after " + std::to_string(m.attempts) +
                             " meshes (last " + std::to_string(m.mesh.cells.size()) + ")");
     }
-    calibration = n / m.estimate;
+    calibration *= n / m.estimate;
   }
   return m;
 }

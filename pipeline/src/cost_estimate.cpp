@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "meshgen/mesh.hpp"
-#include "meshgen/size_field.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/predictor.hpp"
 #include "scene/body.hpp"
@@ -18,98 +17,89 @@
 namespace pipeline {
 
 namespace {
-// The model, each constant measured on this project's runs (docs/verdict.md):
-// gmsh's quad-dominant Delaunay grids hold about 1.5 cells per h^2 of area.
-constexpr double kCellsPerH2 = 1.5;
-// The global time step, dt = max_co f h / (M + 2) for a grid of nominal
-// size h: f = 0.36 is the median over 100 recorded time-accurate runs of the
-// case studies (0.26-0.5: the smallest cell and the fastest waves behind the
-// shock set it), fitted by bench/cost_model_check --fit.
-constexpr double kTimeStepFraction = 0.36;
+// The model, each constant measured on this project's runs (docs/verdict.md,
+// "Sizing a run"), fitted by bench/cost_model_check --fit on the 70 steady
+// time-accurate grids of one `pipeline studies` run of the five case studies.
+// The global time step, dt = max_co f h / (M + 2) for a grid of nominal size
+// h: the smallest cells and the fastest waves set f. Medians: uniform grids
+// 0.31 (their h_min cells include the free stream's, the fastest waves),
+// clustered grids 0.38 (h_min cells only round the shock and the wall).
+constexpr double kTimeStepFractionUniform = 0.31;
+constexpr double kTimeStepFractionClustered = 0.38;
 // Flow-through times to a measured steady state (the same fit's medians):
-// attached wedges settle in about 2.4, blunt bodies (started at rest, a bow
-// shock moving out) in about 8.
-constexpr double kFlowThroughsAttached = 2.4;
-constexpr double kFlowThroughsBlunt = 8.0;
-// rhoCentralFoam serial cost, fitted on the same runs (2 shared cores): per
-// step (the solver's fixed work, the monitor's reads) and per cell-step.
-constexpr double kCpuPerStep = 3.4e-4;
-constexpr double kCpuPerCellStep = 1.5e-6;
-constexpr double kCpuPerCase = 1.5;
+// attached wedges settle in about 2.2, blunt bodies (started at rest, a bow
+// shock moving out) in about 7.8.
+constexpr double kFlowThroughsAttached = 2.2;
+constexpr double kFlowThroughsBlunt = 7.8;
+// rhoCentralFoam serial cost (least squares on relative residuals, one
+// timing's log sd 0.22): per step (the solver's fixed work, the monitor's
+// reads), per cell-step, and per case (start-up, the last write).
+constexpr double kCpuPerStep = 5.0e-5;
+constexpr double kCpuPerCellStep = 1.19e-6;
+constexpr double kCpuPerCase = 0.35;
 // Mesh: meshgen's whole chain (gmsh in pieces, the polyMesh, checkMesh, the
-// plots) measured at 9.2 CPU s for 108k cells (docs/meshgen.md).
-constexpr double kMeshCpuPerCell = 8.5e-5;
-constexpr double kMeshCpuPerGrid = 1.0;
-// A clustered grid grades from h_min to h_max at ratio `growth`: per unit
-// shock length and side, the graded layers hold sum 1/h_k ~ 1/(h_min (1 - 1/growth)) cells.
-// The granular predictor's cost on the case studies (CPU seconds).
-constexpr double kGranularPredictorCpu = 30.0;
+// plots), a line through the same grids' meshing CPU seconds.
+constexpr double kMeshCpuPerCell = 7.5e-5;
+constexpr double kMeshCpuPerGrid = 0.7;
+// The granular predictor's cost: the mean over the case studies (3.5 CPU s
+// on wedge M3/10 to 18 on Apollo M5).
+constexpr double kGranularPredictorCpu = 8.0;
 
-double fluid_area(const scene::Scene& s) {
-  const scene::Domain d = scene::scene_domain(s);
-  const auto g = scene::make_body(*s.body);
-  double a = 0;
-  const auto& p = g.polyline;
-  for (std::size_t i = 0; i < p.size(); ++i) a += scene::cross(p[i], p[(i + 1) % p.size()]);
-  const double body = 0.5 * std::abs(a) * (d.symmetric ? 0.5 : 1.0);
-  return std::max(0.0, d.width() * d.height() - body);
-}
-
-// Length of the shock inside the domain: the oblique line for attached
-// wedges, else about the domain's height (a bow shock bending downstream).
-double shock_length(const scene::Scene& s) {
-  const scene::Domain d = scene::scene_domain(s);
-  if (const auto beta = scene::attached_shock_beta(s)) {
-    const double x_end = std::min(d.xmax, d.ymax / std::tan(*beta));
-    return x_end / std::cos(*beta);
-  }
-  constexpr double kBowLengthPerHeight = 1.3;
-  return kBowLengthPerHeight * d.height();
-}
-
-// Length of the body surface inside the domain (scene units).
-double body_surface_length(const scene::Scene& s) {
-  const std::vector<scene::Vec2> outline = scene::clipped_outline(scene::make_body(*s.body), scene::scene_domain(s));
-  double len = 0.0;
-  for (std::size_t i = 0; i + 1 < outline.size(); ++i) len += scene::norm(outline[i + 1] - outline[i]);
-  return len;
-}
-
-// Where an attached shock is meshed in shock-aligned strips
-// (scene::band_anisotropy), the clustered grid's cells are meshgen's own
-// estimate (strips counted, the grid round them integrated) round the exact
-// oblique shock, its band the half-angle a granular prediction typically
-// carries: the shipped table's 1.96 x 1.14 deg out-of-sample scatter with a
-// 0.6-1.2 deg run interval in quadrature (docs/calibration.md).
+// Every grid's cells are meshgen's own estimate (meshgen::check_mesh_request:
+// the size field integrated over the region meshgen meshes, strips counted
+// exactly), the clustered grids' round a model of the shock a prediction
+// reports, with the band it typically carries. Attached wedges: the exact
+// oblique shock, its band the half-angle of the shipped table's 1.96 x 1.14
+// deg out-of-sample scatter with a 0.6-1.2 deg run interval in quadrature
+// (docs/calibration.md).
 constexpr double kTypicalBandHalfAngleDeg = 2.4;
+// Bow shocks: Billig's cylinder shock, its band this fraction of Billig's
+// standoff (the median 95% half-width of the accepted stations in the blunt
+// case studies' granular bands: disc M4 0.47, Apollo M5 0.27).
+constexpr double kTypicalBowBandRelative = 0.35;
 
-std::optional<double> strip_grid_cells(const scene::Scene& s, double level) {
-  const std::optional<double> beta = scene::attached_shock_beta(s);
-  if (!beta || !(scene::band_anisotropy(s) > 1.0)) return std::nullopt;
-  const ShockCurve ray = apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
-                                  *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
+ShockCurve typical_shock(const scene::Scene& s) {
+  const scene::Domain d = scene::scene_domain(s);
+  const scene::Vec2 nose = scene::make_body(*s.body).nose;
+  if (const std::optional<double> beta = scene::attached_shock_beta(s))
+    return apex_ray(d, nose, *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
+  const double mach = s.freestream.mach, radius = scene::correlation_nose_radius(*s.body);
+  const double standoff = scene::billig_standoff_cylinder(mach) * radius;
+  return billig_curve(d, mach, radius, {nose.x - standoff, nose.y},
+                      kTypicalBowBandRelative * standoff);
+}
+
+// The cells of the grid the pipeline asks meshgen for at `level` (grid_runs.cpp):
+// uniform at h_min x level without a shock, clustered round it with one.
+double grid_cells(const scene::Scene& s, double level, const ShockCurve* shock) {
   meshgen::MeshRequest r;
-  r.shock_curve = ray.points;
-  r.shock_ci = ray.half_width;
+  r.uniform = shock == nullptr;
   r.h_min = s.mesh.h_min * level;
-  r.h_max = s.mesh.h_max * level;
+  r.h_max = (shock ? s.mesh.h_max : s.mesh.h_min) * level;
+  if (shock) {
+    r.shock_curve = shock->points;
+    r.shock_ci = shock->half_width;
+    if (s.mesh.h_body) r.h_body = *s.mesh.h_body * level;
+  }
   return meshgen::check_mesh_request(s, r);
 }
 
-double steps_for(const scene::Scene& s, double h_min) {
+double steps_for(const scene::Scene& s, double h_min, bool clustered) {
   const scene::Domain d = scene::scene_domain(s);
   const double mach = s.freestream.mach;
   const double flow_throughs = std::min(s.cfd.end_time,
                                         scene::attached_shock_beta(s) ? kFlowThroughsAttached : kFlowThroughsBlunt);
-  const double dt = s.cfd.max_co * kTimeStepFraction * h_min / (mach + 2.0);
+  const double f = clustered ? kTimeStepFractionClustered : kTimeStepFractionUniform;
+  const double dt = s.cfd.max_co * f * h_min / (mach + 2.0);
   return flow_throughs * (d.width() / mach) / dt;
 }
 
-GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, double h_min) {
+GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, double h_min,
+                  bool clustered) {
   GridEstimate g;
   g.name = name;
   g.cells = cells;
-  g.steps = steps_for(s, h_min);
+  g.steps = steps_for(s, h_min, clustered);
   g.cpu_seconds = (kCpuPerStep + kCpuPerCellStep * g.cells) * g.steps + kCpuPerCase + kMeshCpuPerCell * cells + kMeshCpuPerGrid;
   return g;
 }
@@ -118,35 +108,20 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, 
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
   RunEstimate e;
   const double L = scene::body_length(*s.body);
-  const double area = fluid_area(s), shock = shock_length(s), body = body_surface_length(s);
-  const std::optional<double> band =
-      s.mesh.band_width ? std::optional<double>(*s.mesh.band_width * L) : std::nullopt;
-  for (const double level : s.pipeline.levels) {
-    const double h = s.mesh.h_min * L * level;
-    e.grids.push_back(grid(s, level_name("uniform", level), kCellsPerH2 * area / (h * h), h));
+  for (const double level : s.pipeline.levels)
+    e.grids.push_back(grid(s, level_name("uniform", level), grid_cells(s, level, nullptr),
+                           s.mesh.h_min * L * level, false));
+  if (predictor != "none") {
+    const ShockCurve shock = typical_shock(s);
+    for (const double level : s.pipeline.levels)
+      e.grids.push_back(grid(
+          s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
+          grid_cells(s, level, &shock), s.mesh.h_min * L * level, true));
   }
-  if (predictor != "none")
-    for (const double level : s.pipeline.levels) {
-      const double h = s.mesh.h_min * L * level, H = s.mesh.h_max * L * level;
-      const double w = meshgen::band_half_width(band, h);
-      const double graded = 2.0 * shock / (h * (1.0 - 1.0 / s.mesh.growth));
-      // meshgen's body rule, h = h_body + (growth - 1) d from the wall (h_body = h_min unless
-      // mesh.h_body says otherwise): per unit wall length its layers hold
-      // int (1/h^2 - 1/H^2) dd = (1/h_body - 1/H)/(growth - 1) - (H - h_body)/((growth - 1) H^2)
-      // cells beyond the far field's (the shock band overlaps them near an apex: an overestimate).
-      const double h_body = meshgen::body_cell_size(
-          s.mesh.h_body ? std::optional<double>(*s.mesh.h_body * L * level) : std::nullopt, h, H);
-      const double slope = s.mesh.growth - 1.0;
-      const double at_body = body * ((1.0 / h_body - 1.0 / H) / slope - (H - h_body) / (slope * H * H));
-      const double cells = strip_grid_cells(s, level).value_or(
-          kCellsPerH2 * (2.0 * w * shock / (h * h) + graded + at_body + area / (H * H)));
-      e.grids.push_back(grid(s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
-                             cells, h));
-    }
   if (!scene::attached_shock_beta(s) && s.pipeline.reference_grid && !s.pipeline.levels.empty()) {
     const double level = reference_grid_level(s.pipeline);
-    const double h = s.mesh.h_min * L * level;
-    e.grids.push_back(grid(s, level_name("reference", level), kCellsPerH2 * area / (h * h), h));
+    e.grids.push_back(grid(s, level_name("reference", level), grid_cells(s, level, nullptr),
+                           s.mesh.h_min * L * level, false));
   }
   e.predictor_cpu_seconds = predictor == "granular" ? kGranularPredictorCpu : 0.0;
   e.total_cpu_seconds = e.predictor_cpu_seconds;

@@ -3,9 +3,12 @@
 #include <cmath>
 
 #include "json_fields.hpp"
+#include "pipeline/predictors.hpp"
 #include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/shock_csv.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -72,6 +75,23 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
   return c;
 }
 
+ShockCurve billig_curve(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex,
+                        double half_width) {
+  constexpr int kPoints = 40;  // per branch
+  ShockCurve c;
+  const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
+  auto add = [&](double dy) {
+    const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
+    if (x <= d.xmax && x >= d.xmin) {
+      c.points.push_back({x, vertex.y + dy});
+      c.half_width.push_back(half_width);
+    }
+  };
+  for (int k = kPoints; k >= 1 && !d.symmetric; --k) add(-y_bottom * k / kPoints);
+  for (int k = 0; k <= kPoints; ++k) add(y_top * k / kPoints);
+  return c;
+}
+
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {
   if (!std::isfinite(calibration_scatter_deg)) return angle_ci_deg;
   const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
@@ -90,13 +110,6 @@ std::vector<ShockPoint> read_accepted_shock(const std::string& path) {
     if (r.accepted) out.push_back({r.shock, std::isfinite(r.ci) ? r.ci : 0.0, r.distance});
   return out;
 }
-
-}  // namespace pipeline
-
-#include "pipeline/predictors.hpp"
-#include "scene/units.hpp"
-
-namespace pipeline {
 
 std::vector<std::string> predictor_names() {
   return {"granular", "correlation", "coarse_cfd", "adapt"};

@@ -20,30 +20,11 @@ namespace pipeline {
 
 namespace {
 using scene::kDeg;
-// Points along the predicted curve.
-constexpr int kCurvePoints = 40;
 // Billig's fits reproduce measured cylinder standoffs within a few percent;
 // the band takes +-10% of the standoff on a cylinder, and +-30% on bodies
 // whose nose is only approximated by a cylinder.
 constexpr double kBilligCylinderRel = 0.10;
 constexpr double kBilligApproximateRel = 0.30;
-
-// Billig's hyperbola from its vertex (x0, yc), upper branch (and the lower
-// one when the domain is not symmetric), clipped to the domain.
-ShockCurve billig_shape(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex, double half_width) {
-  ShockCurve c;
-  const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
-  auto add = [&](double dy) {
-    const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
-    if (x <= d.xmax && x >= d.xmin) {
-      c.points.push_back({x, vertex.y + dy});
-      c.half_width.push_back(half_width);
-    }
-  };
-  for (int k = kCurvePoints; k >= 1 && !d.symmetric; --k) add(-y_bottom * k / kCurvePoints);
-  for (int k = 0; k <= kCurvePoints; ++k) add(y_top * k / kCurvePoints);
-  return c;
-}
 }  // namespace
 
 Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
@@ -70,7 +51,7 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     p.kind = scene::ShockKind::detached;
     p.standoff = standoff / scene::body_length(*s.body);
     p.standoff_ci = rel * p.standoff;
-    curve = billig_shape(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);
+    curve = billig_curve(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);
     p.details = {{"correlation", exact_shape ? "Billig (1967) cylinder shock shape"
                                              : "Billig (1967) cylinder shock shape with the body's half frontal "
                                                "height as nose radius (an approximation)"},

@@ -41,7 +41,7 @@ constexpr double kMaxBandCellFraction = 0.8;
 // meshgen's estimate before gmsh (strips counted exactly, the isotropic grid
 // round them integrated) against the grid gmsh made: the isotropic grids'
 // tolerance (mesh_test.cpp); the isotropic band's estimate was about 2x high.
-constexpr double kEstimateLow = 0.6, kEstimateHigh = 1.6;
+constexpr double kEstimateLow = 0.75, kEstimateHigh = 1.33;
 
 nlohmann::json summary(const std::string& dir) {
   return nlohmann::json::parse(scene::read_file(dir + "/summary.json"));

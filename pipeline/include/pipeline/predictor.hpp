@@ -91,6 +91,13 @@ struct ShockCurve {
 ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
                     double angle_ci_deg);
 
+// A bow shock as a correlation places it: Billig's cylinder shock for Mach
+// `mach` and nose radius `radius`, its vertex at `vertex`, upper branch (and
+// the lower one when the domain is not symmetric) clipped to the domain,
+// every point with the 95% half-width `half_width`.
+ShockCurve billig_curve(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex,
+                        double half_width);
+
 // The 95% half-width of the angle an attached shock's band covers: the
 // measured angle's own interval combined in quadrature with the calibration's
 // out-of-sample scatter (kZ95 times its RMS), which the run's interval cannot

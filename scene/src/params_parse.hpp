@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "scene/stage_params.hpp"
 #include "section.hpp"
@@ -55,8 +56,20 @@ void emit_opt(YAML::Emitter& e, const char* k, const std::optional<T>& v) {
   else
     e << YAML::Null;
 }
+inline void emit_pair(YAML::Emitter& e, Vec2 v) {
+  e << YAML::Flow << YAML::BeginSeq;
+  emit_value(e, v.x);
+  emit_value(e, v.y);
+  e << YAML::EndSeq;
+}
 inline void emit_vec2(YAML::Emitter& e, const char* k, Vec2 v) {
-  e << YAML::Key << k << YAML::Value << YAML::Flow << YAML::BeginSeq << v.x << v.y << YAML::EndSeq;
+  e << YAML::Key << k << YAML::Value;
+  emit_pair(e, v);
+}
+inline void emit_seq(YAML::Emitter& e, const char* k, const std::vector<double>& v) {
+  e << YAML::Key << k << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const double x : v) emit_value(e, x);
+  e << YAML::EndSeq;
 }
 
 }  // namespace scene

@@ -15,7 +15,7 @@ PipelineParams parse_pipeline(Section& s) {
 
 void emit_pipeline(YAML::Emitter& e, const PipelineParams& p) {
   e << YAML::BeginMap;
-  e << YAML::Key << "levels" << YAML::Value << YAML::Flow << p.levels;
+  emit_seq(e, "levels", p.levels);
   emit_kv(e, "calibration", p.calibration);
   emit_kv(e, "cfd", p.cfd);
   emit_kv(e, "reference_grid", p.reference_grid);

@@ -335,9 +335,9 @@ void require_supersonic(const Scene& s, const std::string& stage) {
 
 std::string to_yaml(const Scene& s) {
   YAML::Emitter e;
-  // 15 significant digits: exact for the decimal values people write (1.4,
-  // not 1.3999999999999999) while keeping computed values to round-off.
-  e.SetDoublePrecision(15);
+  // Doubles go through emit_value (the shortest exact decimal); this
+  // precision serves only what the emitter formats itself.
+  e.SetDoublePrecision(17);
   e.SetFloatPrecision(7);
   e << YAML::BeginMap;
   emit_kv(e, "schema", kSchemaVersion);
@@ -362,7 +362,7 @@ std::string to_yaml(const Scene& s) {
       case BodyKind::polygon:
         emit_kv(e, "kind", "polygon");
         e << YAML::Key << "points" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-        for (const Vec2 p : b.points) e << YAML::Flow << YAML::BeginSeq << p.x << p.y << YAML::EndSeq;
+        for (const Vec2 p : b.points) emit_pair(e, p);
         e << YAML::EndSeq;
         break;
     }

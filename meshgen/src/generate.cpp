@@ -60,15 +60,18 @@ constexpr double kClipResolutionCells = 0.25;
 constexpr double kMaxCells = 5e6;
 constexpr double kMinCellSize = 1e-5;
 // Large grids are meshed as pieces between vertical cuts (region_split.hpp),
-// one per kCellsPerPiece estimated cells, up to kMaxPieces, on kGmshThreads
-// threads (the 2 cores meshgen's time budget is set for). gmsh's 2D
+// one per kCellsPerPiece estimated cells, up to kMaxPieces. gmsh's 2D
 // meshing costs more than linearly in a surface's cells: wedge_M3_10 at
 // 108k cells, gmsh CPU s (min of 3, loaded host) 9.5 whole, 8.2 in 2
 // pieces, 6.6 in 4, 5.2 in 8 (docs/meshgen.md). Grids below 2
-// kCellsPerPiece stay whole, as before the cuts.
+// kCellsPerPiece stay whole, as before the cuts. The pieces are meshed one
+// after another (kGmshThreads): on two threads gmsh's grid depended on how
+// the threads interleaved (the disc's 54k-cell uniform grid came out 54094
+// or 54205 cells from one request), and a grid must depend only on its
+// request; one thread costs ~2 s of wall time on a 110k-cell grid and no CPU.
 constexpr double kCellsPerPiece = 12000.0;
 constexpr int kMaxPieces = 8;
-constexpr int kGmshThreads = 2;
+constexpr int kGmshThreads = 1;
 // Zoom window half-size in cells of h_min (at least kZoomBands band half-widths).
 constexpr double kZoomCells = 12.0;
 constexpr double kZoomBands = 3.0;

@@ -153,16 +153,15 @@ struct Plan {
   StripRule strip_rule(const Sizing& z) const {
     return {z.params.h_min, anisotropy, z.params.h_max, z.params.growth};
   }
-  // estimate_cells' sum(dA / h^2) of the grid this sizing makes, so that
-  // estimate x cells_per_h2 is its cell count: with strips, their cells are
-  // counted exactly (entering divided by cells_per_h2) and the isotropic
-  // field that grows from their outlines is summed round them.
-  double estimate(const Sizing& z, const FluidRegion& region, double cells_per_h2) const {
-    if (!strips()) return estimate_cells(field(z, region), region);
+  // The cell count of the grid this sizing makes: cells_per_h2 x
+  // estimate_cells' sum(dA / h^2); with strips, their cells counted exactly
+  // and the isotropic field that grows from their outlines summed round them.
+  double cells(const Sizing& z, const FluidRegion& region, double cells_per_h2) const {
+    if (!strips()) return cells_per_h2 * estimate_cells(field(z, region), region);
     const BandLayout band = layout_strips(z.runs, region, strip_rule(z));
     const StripGridCount c =
         count_cells(band, BandSize(z.params, band, region.body.polyline), region);
-    return c.unstructured + c.strip_cells / cells_per_h2;
+    return cells_per_h2 * c.unstructured + c.strip_cells;
   }
 };
 
@@ -171,7 +170,7 @@ double solve_scale(const Plan& plan, const FluidRegion& region, double target, d
   double lo = 1e-3, hi = 1e3;  // wide bracket on a monotone (decreasing) count
   for (int it = 0; it < 40; ++it) {
     const double mid = std::sqrt(lo * hi);
-    const double n = calibration * plan.estimate(plan.at(mid, region), region, calibration);
+    const double n = plan.cells(plan.at(mid, region), region, calibration);
     (n > target ? lo : hi) = mid;
     if (hi / lo < 1.002) break;
   }
@@ -270,7 +269,7 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
     const double cells_per_h2 = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
     const double scale0 = plan.target ? solve_scale(plan, region, *plan.target, cells_per_h2) : 1.0;
     const Sizing z = plan.at(scale0, region);
-    c.estimate = cells_per_h2 * plan.estimate(z, region, cells_per_h2);
+    c.estimate = plan.cells(z, region, cells_per_h2);
     check_estimate(where, c.estimate, plan.uniform ? z.uniform_h : z.params.h_min, flow_area);
   }
   return c;
@@ -354,7 +353,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
                               "beyond the domain)");
     const SizeField field = plan.field(m.sizing, region);
-    m.estimate = calibration * plan.estimate(m.sizing, region, calibration);
+    m.estimate = plan.cells(m.sizing, region, calibration);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
     job.pieces = static_cast<int>(
         std::clamp(std::floor(m.estimate / kCellsPerPiece), 1.0, static_cast<double>(kMaxPieces)));

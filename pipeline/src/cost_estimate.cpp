@@ -63,10 +63,7 @@ ShockCurve typical_shock(const scene::Scene& s) {
   const scene::Vec2 nose = scene::make_body(*s.body).nose;
   if (const std::optional<double> beta = scene::attached_shock_beta(s))
     return apex_ray(d, nose, *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
-  const double mach = s.freestream.mach, radius = scene::correlation_nose_radius(*s.body);
-  const double standoff = scene::billig_standoff_cylinder(mach) * radius;
-  return billig_curve(d, mach, radius, {nose.x - standoff, nose.y},
-                      kTypicalBowBandRelative * standoff);
+  return billig_bow_shock(s, kTypicalBowBandRelative);
 }
 
 // The cells of the grid the pipeline asks meshgen for at `level` (grid_runs.cpp):
@@ -94,34 +91,32 @@ double steps_for(const scene::Scene& s, double h_min, bool clustered) {
   return flow_throughs * (d.width() / mach) / dt;
 }
 
-GridEstimate grid(const scene::Scene& s, const std::string& name, double cells, double h_min,
-                  bool clustered) {
+// The grid at `level`: clustered round `shock`, uniform without one.
+GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
+                  const ShockCurve* shock) {
   GridEstimate g;
   g.name = name;
-  g.cells = cells;
-  g.steps = steps_for(s, h_min, clustered);
-  g.cpu_seconds = (kCpuPerStep + kCpuPerCellStep * g.cells) * g.steps + kCpuPerCase + kMeshCpuPerCell * cells + kMeshCpuPerGrid;
+  g.cells = grid_cells(s, level, shock);
+  g.steps = steps_for(s, s.mesh.h_min * scene::body_length(*s.body) * level, shock != nullptr);
+  g.cpu_seconds = (kCpuPerStep + kCpuPerCellStep * g.cells) * g.steps + kCpuPerCase +
+                  kMeshCpuPerCell * g.cells + kMeshCpuPerGrid;
   return g;
 }
 }  // namespace
 
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
   RunEstimate e;
-  const double L = scene::body_length(*s.body);
   for (const double level : s.pipeline.levels)
-    e.grids.push_back(grid(s, level_name("uniform", level), grid_cells(s, level, nullptr),
-                           s.mesh.h_min * L * level, false));
+    e.grids.push_back(grid(s, level_name("uniform", level), level, nullptr));
   if (predictor != "none") {
     const ShockCurve shock = typical_shock(s);
+    const std::string family = predictor == "granular" ? "clustered" : "clustered-" + predictor;
     for (const double level : s.pipeline.levels)
-      e.grids.push_back(grid(
-          s, level_name(predictor == "granular" ? "clustered" : "clustered-" + predictor, level),
-          grid_cells(s, level, &shock), s.mesh.h_min * L * level, true));
+      e.grids.push_back(grid(s, level_name(family, level), level, &shock));
   }
   if (!scene::attached_shock_beta(s) && s.pipeline.reference_grid && !s.pipeline.levels.empty()) {
     const double level = reference_grid_level(s.pipeline);
-    e.grids.push_back(grid(s, level_name("reference", level), grid_cells(s, level, nullptr),
-                           s.mesh.h_min * L * level, false));
+    e.grids.push_back(grid(s, level_name("reference", level), level, nullptr));
   }
   e.predictor_cpu_seconds = predictor == "granular" ? kGranularPredictorCpu : 0.0;
   e.total_cpu_seconds = e.predictor_cpu_seconds;

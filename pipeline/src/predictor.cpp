@@ -4,6 +4,8 @@
 
 #include "json_fields.hpp"
 #include "pipeline/predictors.hpp"
+#include "scene/body.hpp"
+#include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
@@ -15,6 +17,27 @@ namespace pipeline {
 namespace {
 // Two-sided 95% point of the normal distribution.
 constexpr double kZ95 = 1.96;
+
+// Billig's cylinder shock for Mach `mach` and nose radius `radius`, its
+// vertex at `vertex`, upper branch (and the lower one when the domain is not
+// symmetric) clipped to the domain, every point with the 95% half-width
+// `half_width`.
+ShockCurve billig_curve(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex,
+                        double half_width) {
+  constexpr int kPoints = 40;  // per branch
+  ShockCurve c;
+  const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
+  auto add = [&](double dy) {
+    const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
+    if (x <= d.xmax && x >= d.xmin) {
+      c.points.push_back({x, vertex.y + dy});
+      c.half_width.push_back(half_width);
+    }
+  };
+  for (int k = kPoints; k >= 1 && !d.symmetric; --k) add(-y_bottom * k / kPoints);
+  for (int k = 0; k <= kPoints; ++k) add(y_top * k / kPoints);
+  return c;
+}
 }  // namespace
 
 nlohmann::json Prediction::summary() const {
@@ -75,21 +98,17 @@ ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
   return c;
 }
 
-ShockCurve billig_curve(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex,
-                        double half_width) {
-  constexpr int kPoints = 40;  // per branch
-  ShockCurve c;
-  const double y_top = d.ymax - vertex.y, y_bottom = d.symmetric ? 0.0 : vertex.y - d.ymin;
-  auto add = [&](double dy) {
-    const double x = vertex.x + scene::billig_shock_x(mach, radius, std::abs(dy));
-    if (x <= d.xmax && x >= d.xmin) {
-      c.points.push_back({x, vertex.y + dy});
-      c.half_width.push_back(half_width);
-    }
-  };
-  for (int k = kPoints; k >= 1 && !d.symmetric; --k) add(-y_bottom * k / kPoints);
-  for (int k = 0; k <= kPoints; ++k) add(y_top * k / kPoints);
-  return c;
+double billig_standoff(const scene::Scene& s) {
+  return scene::billig_standoff_cylinder(s.freestream.mach) *
+         scene::correlation_nose_radius(*s.body);
+}
+
+ShockCurve billig_bow_shock(const scene::Scene& s, double relative_half_width) {
+  const double standoff = billig_standoff(s);
+  const scene::Vec2 nose = scene::make_body(*s.body).nose;
+  return billig_curve(scene::scene_domain(s), s.freestream.mach,
+                      scene::correlation_nose_radius(*s.body), {nose.x - standoff, nose.y},
+                      relative_half_width * standoff);
 }
 
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {

@@ -32,7 +32,6 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   const scene::CpuStopwatch cpu;
   const scene::Scene& s = cx.scene;
   const scene::Domain d = scene::scene_domain(s);
-  const double mach = s.freestream.mach;
   Prediction p;
   p.predictor = name();
   ShockCurve curve;
@@ -43,19 +42,17 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     curve = apex_ray(d, scene::make_body(*s.body).nose, p.shock_angle_deg, 0.0);
     p.details = {{"correlation", "theta-beta-Mach relation (exact for the inviscid gas)"}};
   } else {
-    const double radius = scene::correlation_nose_radius(*s.body);
     const bool exact_shape = scene::correlation_is_exact_shape(*s.body);
-    const double standoff = scene::billig_standoff_cylinder(mach) * radius;
     const double rel = exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
-    const scene::Vec2 nose = scene::make_body(*s.body).nose;
     p.kind = scene::ShockKind::detached;
-    p.standoff = standoff / scene::body_length(*s.body);
+    p.standoff = billig_standoff(s) / scene::body_length(*s.body);
     p.standoff_ci = rel * p.standoff;
-    curve = billig_curve(d, mach, radius, {nose.x - standoff, nose.y}, rel * standoff);
-    p.details = {{"correlation", exact_shape ? "Billig (1967) cylinder shock shape"
-                                             : "Billig (1967) cylinder shock shape with the body's half frontal "
-                                               "height as nose radius (an approximation)"},
-                 {"nose_radius", radius},
+    curve = billig_bow_shock(s, rel);
+    p.details = {{"correlation",
+                  exact_shape ? "Billig (1967) cylinder shock shape"
+                              : "Billig (1967) cylinder shock shape with the body's half frontal "
+                                "height as nose radius (an approximation)"},
+                 {"nose_radius", scene::correlation_nose_radius(*s.body)},
                  {"relative_half_width", rel}};
   }
   p.curve = curve.points;

@@ -91,12 +91,14 @@ struct ShockCurve {
 ShockCurve apex_ray(const scene::Domain& d, scene::Vec2 apex, double angle_deg,
                     double angle_ci_deg);
 
-// A bow shock as a correlation places it: Billig's cylinder shock for Mach
-// `mach` and nose radius `radius`, its vertex at `vertex`, upper branch (and
-// the lower one when the domain is not symmetric) clipped to the domain,
-// every point with the 95% half-width `half_width`.
-ShockCurve billig_curve(const scene::Domain& d, double mach, double radius, scene::Vec2 vertex,
-                        double half_width);
+// A bow shock as a correlation places it ahead of the scene's body: Billig's
+// cylinder shock with the body's correlation nose radius
+// (scene::correlation_nose_radius), its vertex billig_standoff(s) (scene
+// units) ahead of the nose, clipped to the scene's domain (the lower branch
+// too when the domain is not symmetric), every point with the 95% half-width
+// relative_half_width x that standoff.
+double billig_standoff(const scene::Scene& s);
+ShockCurve billig_bow_shock(const scene::Scene& s, double relative_half_width);
 
 // The 95% half-width of the angle an attached shock's band covers: the
 // measured angle's own interval combined in quadrature with the calibration's

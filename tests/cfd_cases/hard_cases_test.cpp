@@ -74,7 +74,8 @@ TEST(HardCases, ApolloMach5OnACoarseMeshgenGrid) {
   // end in a result or a clear RunError, never a hang or a silent NaN.
   const std::string d = cfd_test::scratch_dir();
   {
-    const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
+    const scene::Scene s =
+        apollo_on_coarse_grid(d + "/mesh", "{end_time: 3, flux_scheme: Kurganov}");
     try {
       (void)cfd::run_case(s, d + "/mesh", d + "/kurganov", {});
       expect_finite_positive(cfd::resample_to_lattice(s, d + "/kurganov", 80, 80));
@@ -104,13 +105,13 @@ TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
 }  // namespace
 
 TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
-  // The Apollo start above with the default Kurganov flux diverges; the
+  // The Apollo start above with the Kurganov flux diverges; the
   // fallback restarts it from the initial state with Tadmor, Minmod and half
   // the Courant number, says so in the result and summary.json, and counts
   // the failed attempt's CPU and steps. With cfd.fallback false the
   // divergence is the run's end.
   const std::string d = cfd_test::scratch_dir();
-  const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3}");
+  const scene::Scene s = apollo_on_coarse_grid(d + "/mesh", "{end_time: 3, flux_scheme: Kurganov}");
   const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
   EXPECT_NE(r.fallback.find("flux_scheme Tadmor, limiter Minmod, max_co 0.15"), std::string::npos) << r.fallback;
   EXPECT_NE(r.fallback.find("diverged"), std::string::npos) << r.fallback;
@@ -119,7 +120,8 @@ TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
   const std::string summary = scene::read_file(d + "/case/summary.json");
   EXPECT_NE(summary.find("\"fallback\": \"flux_scheme Tadmor"), std::string::npos) << summary;
 
-  const scene::Scene strict = scene::parse_scene(std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false}\n");
+  const scene::Scene strict = scene::parse_scene(
+      std::string(kApolloM5) + "cfd: {end_time: 3, fallback: false, flux_scheme: Kurganov}\n");
   EXPECT_THROW((void)cfd::run_case_with_fallback(strict, d + "/mesh", d + "/strict", {}), cfd::Diverged);
 }
 
@@ -157,16 +159,18 @@ UniformRun run_scene_on_uniform_grid(const std::string& yaml) {
 }
 }  // namespace
 
-TEST(HardCases, DiscAtMach8FinishesSteadyWithTheFallback) {
-  // From the default start (at rest, Kurganov) the Mach 8 disc diverges on
-  // this grid (docs/reliability.md); the fallback must carry it to a
-  // measured steady state with finite, positive fields.
+TEST(HardCases, DiscAtMach8FinishesSteadyOnTadmorFromTheStart) {
+  // Started at rest with Kurganov the Mach 8 disc diverged on this grid
+  // (docs/reliability.md) and finished only through the fallback; the
+  // automatic flux is Tadmor there, which must carry it to a measured steady
+  // state at the full Courant number, with finite, positive fields.
   const scene::Scene s = scene::parse_scene(
       "name: disc_M8\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 8}\nmesh: {h_min: 0.08, h_max: 0.2}\n");
   const std::string d = cfd_test::scratch_dir();
   const cfd::CaseResult r = run_on_uniform_grid(s, d);
   EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_NE(r.fallback.find("Tadmor"), std::string::npos) << "the default start no longer diverges: " << r.fallback;
+  EXPECT_EQ(r.flux_scheme, "Tadmor");
+  EXPECT_TRUE(r.fallback.empty()) << r.fallback;
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 80, 80));
 }
 

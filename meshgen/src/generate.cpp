@@ -155,12 +155,15 @@ struct Plan {
   }
   // The cell count of the grid this sizing makes: cells_per_h2 x
   // estimate_cells' sum(dA / h^2); with strips, their cells counted exactly
-  // and the isotropic field that grows from their outlines summed round them.
-  double cells(const Sizing& z, const FluidRegion& region, double cells_per_h2) const {
+  // and the isotropic field that grows from their outlines summed round them
+  // (the strips laid go to `laid`, when given, for the mesher).
+  double cells(const Sizing& z, const FluidRegion& region, double cells_per_h2,
+               BandLayout* laid = nullptr) const {
     if (!strips()) return cells_per_h2 * estimate_cells(field(z, region), region);
-    const BandLayout band = layout_strips(z.runs, region, strip_rule(z));
+    BandLayout band = layout_strips(z.runs, region, strip_rule(z));
     const StripGridCount c =
         count_cells(band, BandSize(z.params, band, region.body.polyline), region);
+    if (laid) *laid = std::move(band);
     return cells_per_h2 * c.unstructured + c.strip_cells;
   }
 };
@@ -329,12 +332,11 @@ struct Meshed {
 
 // gmsh on the plan's field, or round shock-aligned strips when the plan asks
 // for them (band_strip.hpp).
-PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField& field, Meshed& m,
-                    const GmshJob& job, const fs::path& stage) {
+PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField& field,
+                    const Meshed& m, const GmshJob& job, const fs::path& stage) {
   const std::string scratch = (stage / "plane_mesh.bin").string();
   if (!plan.strips()) return mesh_with_gmsh_in_child(region, field, job, scratch);
-  const SizeParams& p = m.sizing.params;
-  m.band = layout_strips(m.sizing.runs, region, plan.strip_rule(m.sizing));
+  const SizeParams& p = m.sizing.params;  // m.band: laid when the plan counted its cells
   const BandSize size(p, m.band, region.body.polyline);
   const SizeFunction h = [&size](Vec2 q) { return size(q); };
   return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
@@ -353,7 +355,7 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
                               "beyond the domain)");
     const SizeField field = plan.field(m.sizing, region);
-    m.estimate = plan.cells(m.sizing, region, calibration);
+    m.estimate = plan.cells(m.sizing, region, calibration, &m.band);
     job.thickness = plan.uniform ? m.sizing.uniform_h : m.sizing.params.h_max;
     job.pieces = static_cast<int>(
         std::clamp(std::floor(m.estimate / kCellsPerPiece), 1.0, static_cast<double>(kMaxPieces)));

@@ -59,10 +59,9 @@ constexpr double kTypicalBandHalfAngleDeg = 2.4;
 constexpr double kTypicalBowBandRelative = 0.35;
 
 ShockCurve typical_shock(const scene::Scene& s) {
-  const scene::Domain d = scene::scene_domain(s);
-  const scene::Vec2 nose = scene::make_body(*s.body).nose;
   if (const std::optional<double> beta = scene::attached_shock_beta(s))
-    return apex_ray(d, nose, *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
+    return apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
+                    *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
   return billig_bow_shock(s, kTypicalBowBandRelative);
 }
 

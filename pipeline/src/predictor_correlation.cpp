@@ -31,7 +31,6 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   const auto t0 = std::chrono::steady_clock::now();
   const scene::CpuStopwatch cpu;
   const scene::Scene& s = cx.scene;
-  const scene::Domain d = scene::scene_domain(s);
   Prediction p;
   p.predictor = name();
   ShockCurve curve;
@@ -39,7 +38,8 @@ Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
     p.kind = scene::ShockKind::attached;
     p.shock_angle_deg = *beta / kDeg;
     p.shock_angle_ci_deg = 0.0;
-    curve = apex_ray(d, scene::make_body(*s.body).nose, p.shock_angle_deg, 0.0);
+    curve =
+        apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose, p.shock_angle_deg, 0.0);
     p.details = {{"correlation", "theta-beta-Mach relation (exact for the inviscid gas)"}};
   } else {
     const bool exact_shape = scene::correlation_is_exact_shape(*s.body);

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "granular/flow_setup.hpp"
 #include "meshgen/mesh.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/predictor.hpp"
@@ -41,9 +42,14 @@ constexpr double kCpuPerCase = 0.35;
 // plots), a line through the same grids' meshing CPU seconds.
 constexpr double kMeshCpuPerCell = 7.5e-5;
 constexpr double kMeshCpuPerGrid = 0.7;
-// The granular predictor's cost: the mean over the case studies (3.5 CPU s
-// on wedge M3/10 to 18 on Apollo M5).
+// The granular predictor's cost at the default particle count: the mean
+// over the case studies (3.5 CPU s on wedge M3/10 to 18 on Apollo M5). It
+// grows as particles^1.5: collisions per flow-through scale with the disks
+// times the flow-through time, which grows with the domain's length in
+// diameters, sqrt(particles) (wedge M3/10 at 4x the default particles: 41.6
+// against 4.7 CPU s, 4^1.57).
 constexpr double kGranularPredictorCpu = 8.0;
+constexpr double kGranularCpuParticleExponent = 1.5;
 
 // Every grid's cells are meshgen's own estimate (meshgen::check_mesh_request:
 // the size field integrated over the region meshgen meshes, strips counted
@@ -101,6 +107,17 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
                   kMeshCpuPerCell * g.cells + kMeshCpuPerGrid;
   return g;
 }
+// The granular stage's CPU seconds, capped by granular.cpu_budget (its
+// averaging stops before a chunk that would overrun it). Builds the flow
+// setup first, so a particle count beyond what memory holds is refused here
+// (InputError naming the key) before anything runs.
+double granular_predictor_cpu(const scene::Scene& s) {
+  const granular::FlowSetup f = granular::make_flow_setup(s);
+  const double cpu =
+      kGranularPredictorCpu *
+      std::pow(f.expected_particles / scene::kDefaultFlowParticles, kGranularCpuParticleExponent);
+  return s.granular.cpu_budget ? std::min(cpu, *s.granular.cpu_budget) : cpu;
+}
 }  // namespace
 
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
@@ -117,7 +134,7 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
     const double level = reference_grid_level(s.pipeline);
     e.grids.push_back(grid(s, level_name("reference", level), level, nullptr));
   }
-  e.predictor_cpu_seconds = predictor == "granular" ? kGranularPredictorCpu : 0.0;
+  e.predictor_cpu_seconds = predictor == "granular" ? granular_predictor_cpu(s) : 0.0;
   e.total_cpu_seconds = e.predictor_cpu_seconds;
   for (const auto& g : e.grids) e.total_cpu_seconds += g.cpu_seconds;
   return e;

@@ -54,7 +54,16 @@ double level_of(const std::string& grid) {
 void collect_case(const fs::path& dir, std::vector<Run>& runs) {
   const scene::Scene s = scene::load_scene((dir / "scene.resolved.yaml").string());
   const std::string predictor = "granular";
-  const pipeline::RunEstimate est = pipeline::estimate_run(s, predictor);
+  // The band the run's prediction carried: its calibration scatter, as recorded.
+  const nlohmann::json run = read_json(dir / "summary.json");
+  const auto recorded = [&](const char* key) {
+    const nlohmann::json::json_pointer at("/prediction/details/" + std::string(key));
+    return run.is_object() && run.contains(at) && run.at(at).is_number() ? run.at(at).get<double>()
+                                                                         : scene::kNaN;
+  };
+  const pipeline::RunEstimate est = pipeline::estimate_run(
+      s, predictor,
+      {recorded("calibration_angle_scatter_deg"), recorded("calibration_bow_shock_relative_rms")});
   const double L = scene::body_length(*s.body);
   for (const auto& g : est.grids) {
     const nlohmann::json cfd = read_json(dir / "cfd" / g.name / "summary.json");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include "meshgen/mesh.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/predictor.hpp"
+#include "pipeline/predictors.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
@@ -53,18 +55,55 @@ constexpr double kGranularCpuParticleExponent = 1.5;
 
 // Every grid's cells are meshgen's own estimate (meshgen::check_mesh_request:
 // the size field integrated over the region meshgen meshes, strips counted
-// exactly), the clustered grids' round a model of the shock a prediction
-// reports, with the band it typically carries. Attached wedges: the exact
-// oblique shock, its band the half-angle of the shipped table's 1.96 x 1.14
-// deg out-of-sample scatter with a 0.6-1.2 deg run interval in quadrature
-// (docs/calibration.md).
+// exactly), the clustered grids' round a model of the shock each predictor
+// reports, with the band it will carry (pipeline/src/predictor*.cpp):
+// - correlation: its own shock, computed (the exact ray, Billig's shock);
+// - granular: the exact oblique shock or Billig's shock, with the band a
+//   granular run gets: its own interval combined with the calibration
+//   table's out-of-sample scatter (none when the scene sets its
+//   restitution). A run's own 95% angle interval is 0.6-1.2 deg on the
+//   wedge case studies; a bow-shock station's own half-width is ~0.6% of its
+//   distance from the body (disc M4 median 0.0057): the table's scatter
+//   dominates both.
+constexpr double kTypicalRunAngleCiDeg = 0.9;
+constexpr double kTypicalStationCiRelative = 0.006;
+// - the others (coarse CFD, adapted grids): the band the granular
+//   predictor carries with the shipped table, as a half-angle of
+//   hypot(0.9, 1.96 x 1.14) deg, and on bow shocks this fraction of
+//   Billig's standoff (the median 95% half-width of the accepted stations in
+//   the blunt case studies' granular bands: disc M4 0.47, Apollo M5 0.27).
 constexpr double kTypicalBandHalfAngleDeg = 2.4;
-// Bow shocks: Billig's cylinder shock, its band this fraction of Billig's
-// standoff (the median 95% half-width of the accepted stations in the blunt
-// case studies' granular bands: disc M4 0.47, Apollo M5 0.27).
 constexpr double kTypicalBowBandRelative = 0.35;
 
-ShockCurve typical_shock(const scene::Scene& s) {
+double distance_to_body(scene::Vec2 p, const std::vector<scene::Vec2>& polygon) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const scene::Vec2 a = polygon[i], ab = polygon[(i + 1) % polygon.size()] - a;
+    const double len2 = scene::norm2(ab);
+    const double t = len2 > 0 ? std::clamp(scene::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, scene::norm(p - (a + t * ab)));
+  }
+  return best;
+}
+
+ShockCurve granular_shock(const scene::Scene& s, const BandScatter& scatter) {
+  if (const std::optional<double> beta = scene::attached_shock_beta(s))
+    return apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
+                    *beta * 180.0 / std::numbers::pi,
+                    band_angle_half_width_deg(kTypicalRunAngleCiDeg, scatter.angle_deg));
+  ShockCurve c = billig_bow_shock(s, 0.0);
+  const std::vector<scene::Vec2> body = scene::make_body(*s.body).polyline;
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    const double d = distance_to_body(c.points[i], body);
+    c.half_width[i] = band_bow_half_width(kTypicalStationCiRelative * d, d, scatter.bow_relative);
+  }
+  return c;
+}
+
+ShockCurve typical_shock(const scene::Scene& s, const std::string& predictor,
+                         const BandScatter& scatter) {
+  if (predictor == "correlation") return correlation_shock(s).curve;
+  if (predictor == "granular") return granular_shock(s, scatter);
   if (const std::optional<double> beta = scene::attached_shock_beta(s))
     return apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
                     *beta * 180.0 / std::numbers::pi, kTypicalBandHalfAngleDeg);
@@ -120,12 +159,13 @@ double granular_predictor_cpu(const scene::Scene& s) {
 }
 }  // namespace
 
-RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor) {
+RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
+                         const BandScatter& scatter) {
   RunEstimate e;
   for (const double level : s.pipeline.levels)
     e.grids.push_back(grid(s, level_name("uniform", level), level, nullptr));
   if (predictor != "none") {
-    const ShockCurve shock = typical_shock(s);
+    const ShockCurve shock = typical_shock(s, predictor, scatter);
     const std::string family = predictor == "granular" ? "clustered" : "clustered-" + predictor;
     for (const double level : s.pipeline.levels)
       e.grids.push_back(grid(s, level_name(family, level), level, &shock));
@@ -158,9 +198,12 @@ std::string format_estimate(const RunEstimate& e, double budget) {
   return os.str();
 }
 
-std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s, const std::string& predictor) {
+std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s,
+                                                       const std::string& predictor,
+                                                       const BandScatter& scatter) {
   const double budget = s.pipeline.budget_cpu_seconds;
-  if (!s.mesh.sizes_default || estimate_run(s, predictor).total_cpu_seconds <= budget) return std::nullopt;
+  if (!s.mesh.sizes_default || estimate_run(s, predictor, scatter).total_cpu_seconds <= budget)
+    return std::nullopt;
   // Cells, and with them the cost, fall steeply with h (about h^-3), so a
   // factor of 10 covers default scenes estimated up to ~1000 budgets.
   constexpr double kMaxCoarsening = 10.0;
@@ -176,21 +219,24 @@ std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s, const st
     t.mesh.h_max = round2(defaults.h_max * k);
     return t;
   };
-  if (estimate_run(sized(kMaxCoarsening), predictor).total_cpu_seconds > budget) return std::nullopt;
+  if (estimate_run(sized(kMaxCoarsening), predictor, scatter).total_cpu_seconds > budget)
+    return std::nullopt;
   double lo = 1.0, hi = kMaxCoarsening;  // estimate(lo) > budget >= estimate(hi)
   for (int i = 0; i < kBisections && hi / lo > 1.0 + 1e-3; ++i) {
     const double mid = std::sqrt(lo * hi);
-    (estimate_run(sized(mid), predictor).total_cpu_seconds > budget ? lo : hi) = mid;
+    (estimate_run(sized(mid), predictor, scatter).total_cpu_seconds > budget ? lo : hi) = mid;
   }
   const scene::Scene t = sized(hi);
   s.mesh.h_min = t.mesh.h_min;
   s.mesh.h_max = t.mesh.h_max;
   char line[320];
-  std::snprintf(line, sizeof line,
-                "pipeline: mesh.h_min = %g, mesh.h_max = %g body lengths (not in the scene: the defaults %g / %g "
-                "coarsened %.2fx so the estimated %.0f CPU seconds fit pipeline.budget_cpu_seconds = %.0f)",
-                s.mesh.h_min, s.mesh.h_max, defaults.h_min, defaults.h_max, s.mesh.h_min / defaults.h_min,
-                estimate_run(s, predictor).total_cpu_seconds, budget);
+  std::snprintf(
+      line, sizeof line,
+      "pipeline: mesh.h_min = %g, mesh.h_max = %g body lengths (not in the scene: the defaults %g "
+      "/ %g "
+      "coarsened %.2fx so the estimated %.0f CPU seconds fit pipeline.budget_cpu_seconds = %.0f)",
+      s.mesh.h_min, s.mesh.h_max, defaults.h_min, defaults.h_max, s.mesh.h_min / defaults.h_min,
+      estimate_run(s, predictor, scatter).total_cpu_seconds, budget);
   return std::string(line);
 }
 

@@ -27,33 +27,43 @@ constexpr double kBilligCylinderRel = 0.10;
 constexpr double kBilligApproximateRel = 0.30;
 }  // namespace
 
+CorrelationShock correlation_shock(const scene::Scene& s) {
+  CorrelationShock c;
+  if (const auto beta = scene::attached_shock_beta(s)) {
+    c.kind = scene::ShockKind::attached;
+    c.angle_deg = *beta / kDeg;
+    c.curve = apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose, c.angle_deg, 0.0);
+    return c;
+  }
+  c.kind = scene::ShockKind::detached;
+  c.exact_shape = scene::correlation_is_exact_shape(*s.body);
+  c.relative_half_width = c.exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
+  c.curve = billig_bow_shock(s, c.relative_half_width);
+  return c;
+}
+
 Prediction CorrelationPredictor::predict(const PredictContext& cx) const {
   const auto t0 = std::chrono::steady_clock::now();
   const scene::CpuStopwatch cpu;
   const scene::Scene& s = cx.scene;
   Prediction p;
   p.predictor = name();
-  ShockCurve curve;
-  if (const auto beta = scene::attached_shock_beta(s)) {
-    p.kind = scene::ShockKind::attached;
-    p.shock_angle_deg = *beta / kDeg;
+  const CorrelationShock c = correlation_shock(s);
+  const ShockCurve& curve = c.curve;
+  p.kind = c.kind;
+  if (c.kind == scene::ShockKind::attached) {
+    p.shock_angle_deg = c.angle_deg;
     p.shock_angle_ci_deg = 0.0;
-    curve =
-        apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose, p.shock_angle_deg, 0.0);
     p.details = {{"correlation", "theta-beta-Mach relation (exact for the inviscid gas)"}};
   } else {
-    const bool exact_shape = scene::correlation_is_exact_shape(*s.body);
-    const double rel = exact_shape ? kBilligCylinderRel : kBilligApproximateRel;
-    p.kind = scene::ShockKind::detached;
     p.standoff = billig_standoff(s) / scene::body_length(*s.body);
-    p.standoff_ci = rel * p.standoff;
-    curve = billig_bow_shock(s, rel);
+    p.standoff_ci = c.relative_half_width * p.standoff;
     p.details = {{"correlation",
-                  exact_shape ? "Billig (1967) cylinder shock shape"
-                              : "Billig (1967) cylinder shock shape with the body's half frontal "
-                                "height as nose radius (an approximation)"},
+                  c.exact_shape ? "Billig (1967) cylinder shock shape"
+                                : "Billig (1967) cylinder shock shape with the body's half frontal "
+                                  "height as nose radius (an approximation)"},
                  {"nose_radius", scene::correlation_nose_radius(*s.body)},
-                 {"relative_half_width", rel}};
+                 {"relative_half_width", c.relative_half_width}};
   }
   p.curve = curve.points;
   p.half_width = curve.half_width;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 
 namespace pipeline {
 
@@ -21,7 +22,16 @@ struct RunEstimate {
   double total_cpu_seconds = 0;
 };
 
-RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor);
+// What the calibration table will add to a granular prediction's band (RMS
+// out-of-sample errors; NaN: nothing, as when the scene sets its restitution):
+// AppliedCalibration's angle_scatter_deg and bow_shock_relative_rms.
+struct BandScatter {
+  double angle_deg = scene::kNaN;
+  double bow_relative = scene::kNaN;
+};
+
+RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
+                         const BandScatter& scatter = {});
 
 // The table `--dry-run` prints.
 std::string format_estimate(const RunEstimate& e, double budget_cpu_seconds);
@@ -31,7 +41,9 @@ std::string format_estimate(const RunEstimate& e, double budget_cpu_seconds);
 // (at most kMaxCoarsening, sizes rounded to 2 significant figures) to the
 // finest sizes whose estimate fits. Returns the line saying what it chose,
 // or nothing when the scene keeps its sizes.
-std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s, const std::string& predictor);
+std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s,
+                                                       const std::string& predictor,
+                                                       const BandScatter& scatter = {});
 
 // InputError when the estimate exceeds the budget, naming both and the way out.
 void check_budget(const scene::Scene& s, const RunEstimate& e, bool force_budget);

@@ -16,6 +16,19 @@ class CorrelationPredictor final : public Predictor {
   Prediction predict(const PredictContext& cx) const override;
 };
 
+// The correlation's shock, without a run: the exact theta-beta-Mach ray
+// (no band of its own) on attached wedges, else Billig's cylinder shock with
+// a band of relative_half_width x its standoff. The dry run's estimate
+// meshes round it too.
+struct CorrelationShock {
+  scene::ShockKind kind = scene::ShockKind::none;
+  ShockCurve curve;
+  double angle_deg = scene::kNaN;            // attached
+  double relative_half_width = scene::kNaN;  // detached
+  bool exact_shape = false;                  // a circular nose: Billig's shape is exact
+};
+CorrelationShock correlation_shock(const scene::Scene& s);
+
 class CoarseCfdPredictor final : public Predictor {
  public:
   std::string name() const override { return "coarse_cfd"; }

@@ -19,6 +19,7 @@
 #include "pipeline/run.hpp"
 #include "pipeline/stage_cache.hpp"
 #include "scene/body.hpp"
+#include "scene/shock_csv.hpp"
 
 namespace pipeline {
 
@@ -67,6 +68,18 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
     p.half_width = ray.half_width;
     p.shock_csv = cx.out_dir + "/shock_ray.csv";
     write_shock_curve(p.shock_csv, p.curve, p.half_width);
+  } else if (p.kind != scene::ShockKind::none &&
+             r.value("stations_accepted", std::size_t{0}) < scene::kMinShockCurvePoints) {
+    // shockfit saw a shock (its stagnation-line standoff is reported) but
+    // accepted too few stations to place a curve: a weak near-sonic shock,
+    // or a granular shock far from where the domain expects it. No band:
+    // the pipeline runs the uniform family alone and gives no verdict.
+    p.details["no_band"] = fmt::format(
+        "shockfit accepted {} of {} stations, fewer than the {} a band needs (standoff on the axis "
+        "{:.3g} "
+        "+- {:.2g} body lengths)",
+        r.value("stations_accepted", 0), r.value("stations", 0), scene::kMinShockCurvePoints,
+        p.standoff, p.standoff_ci);
   } else if (p.kind != scene::ShockKind::none) {
     // The stations' own intervals say how well this run knows its shock, not
     // how far the calibrated gas is from the ideal gas's: a bow shock's band
@@ -83,14 +96,14 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
       write_shock_curve(p.shock_csv, p.curve, p.half_width);
     }
   }
-  p.details = {
-      {"restitution", cx.scene.granular.restitution},
-      {"granular", r.value("granular", nlohmann::json::object())},
-      {"field", r.value("field", "")},
-      {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
-      {"band_angle_half_width_deg", json_number(band_ci)},
-      {"calibration_bow_shock_relative_rms", json_number(cx.calibration_bow_shock_relative_rms)},
-      {"averaging", averaging_report(r)}};
+  p.details.update(
+      {{"restitution", cx.scene.granular.restitution},
+       {"granular", r.value("granular", nlohmann::json::object())},
+       {"field", r.value("field", "")},
+       {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
+       {"band_angle_half_width_deg", json_number(band_ci)},
+       {"calibration_bow_shock_relative_rms", json_number(cx.calibration_bow_shock_relative_rms)},
+       {"averaging", averaging_report(r)}});
   return p;
 }
 

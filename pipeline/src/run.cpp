@@ -300,7 +300,13 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const PrimaryError primary = primary_error_for(s);
   std::vector<GridRun> fam_c, fam_u;
   if (!shock.has_shock)
-    scene::log_line("pipeline: the " + o.predictor + " predictor found no shock; no clustered grids", true);
+    scene::log_line(
+        "pipeline: the " + o.predictor + " predictor " +
+            (pred.details.contains("no_band")
+                 ? "placed no shock curve (" + pred.details["no_band"].get<std::string>() + ")"
+                 : std::string("found no shock")) +
+            "; no clustered grids, no verdict",
+        true);
   for (const double level : levels) {
     fam_u.push_back(grids.run("uniform", level, {}, primary));
     if (shock.has_shock) fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));

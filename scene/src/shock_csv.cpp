@@ -16,8 +16,6 @@ namespace {
 // Enough digits that a round trip through the file changes nothing that
 // matters (the fit's own uncertainty is far larger).
 constexpr int kDigits = 12;
-// Two points make the shortest curve a grid can be clustered at.
-constexpr std::size_t kMinAccepted = 2;
 
 // Fields: split at commas, trimmed of spaces and of surrounding quotes.
 std::vector<std::string> split_csv(const std::string& line) {
@@ -143,10 +141,10 @@ ShockCsv read_shock_csv(const std::string& path) {
   if (accepted == 0)
     throw InputError(path + ": no accepted rows (accepted == 1) among " +
                      std::to_string(out.rows.size()));
-  if (accepted < kMinAccepted)
+  if (accepted < kMinShockCurvePoints)
     throw InputError(path + ": only " + std::to_string(accepted) +
                      " accepted row (accepted == 1) among " + std::to_string(out.rows.size()) +
-                     "; a shock curve needs at least " + std::to_string(kMinAccepted));
+                     "; a shock curve needs at least " + std::to_string(kMinShockCurvePoints));
   return out;
 }
 

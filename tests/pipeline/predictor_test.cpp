@@ -164,6 +164,26 @@ TEST(Predictor, GranularHandsAnAttachedShockAsTheApexRay) {
   EXPECT_NE(wide.fingerprint, p.fingerprint);
 }
 
+// A disc at Mach 1.7 with e = 1 (where the wedge table, held at the elastic
+// limit, puts it): the granular bow shock stands 4.3 R off, past where the
+// domain expects it, and shockfit accepts none of its 40 stations, though it
+// reads a standoff on the axis. The predictor places no band and says why,
+// so the pipeline runs the uniform family alone instead of failing on an
+// empty shock.csv (it had exited 2, "no accepted rows").
+TEST(Predictor, GranularBowShockWithoutAcceptedStationsPlacesNoBandAndSaysWhy) {
+  const auto s = scene::parse_scene(
+      "name: d17\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.7}\ngranular: "
+      "{restitution: 1}\n");
+  const auto dir = fresh("granular_no_band");
+  const auto p = pipeline::predict_shock(s, "granular", dir.string(), 1);
+  EXPECT_EQ(p.kind, scene::ShockKind::detached);
+  EXPECT_TRUE(p.curve.empty());
+  EXPECT_TRUE(std::isfinite(p.standoff));
+  ASSERT_TRUE(p.details.contains("no_band"));
+  EXPECT_NE(p.details["no_band"].get<std::string>().find("accepted 0 of 40"), std::string::npos)
+      << p.details["no_band"];
+}
+
 TEST(Predictor, BandAngleCombinesTheIntervalWithTheCalibrationScatter) {
   EXPECT_NEAR(pipeline::band_angle_half_width_deg(0.6, 1.0), std::hypot(0.6, 1.96), 1e-15);
   EXPECT_EQ(pipeline::band_angle_half_width_deg(0.6, kNaN), 0.6);  // a scene's own restitution

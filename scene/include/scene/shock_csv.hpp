@@ -4,6 +4,7 @@
 // columns by name, so more columns may be present and in any order; only
 // shock_x, shock_y and accepted are required. Lines starting with '#' are
 // comments; fields may be surrounded by spaces or double quotes.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct ShockCsv {
   bool has_ci = false;            // the header has a ci column
 };
 
+// Accepted rows a shock curve needs: fewer leave no curve to cluster a grid at.
+inline constexpr std::size_t kMinShockCurvePoints = 2;
+
 // The columns shockfit writes, in order.
 const std::vector<std::string>& shock_csv_columns();
 
@@ -37,7 +41,7 @@ void write_shock_csv(const std::string& path, const std::vector<ShockCsvRow>& ro
 // missing or empty file, no header, a required column missing, a row too
 // short for a column, a field that is not a number, accepted other than
 // 0 or 1, an accepted row without a finite shock_x and shock_y, and fewer
-// than 2 accepted rows (no curve to cluster a grid at).
+// than kMinShockCurvePoints accepted rows.
 ShockCsv read_shock_csv(const std::string& path);
 
 }  // namespace scene

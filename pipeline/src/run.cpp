@@ -274,7 +274,10 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   const AppliedCalibration calib = apply_calibration(s, o.calibration_path);
   const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
   const std::string& calib_note = calib.note;
-  if (!calib_note.empty()) scene::log_line("pipeline: " + calib_note, calib.outside_training_mach);
+  // Other predictors do not use the restitution: its note (and its warning
+  // outside the training range) would only confuse their runs' terminal.
+  if (!calib_note.empty() && o.predictor == "granular")
+    scene::log_line("pipeline: " + calib_note, calib.outside_training_mach);
   scene::write_file_atomic(o.out_dir + "/scene.resolved.yaml", scene::to_yaml(s));
   const auto& levels = s.pipeline.levels;
   const int n_stages = 2 + (s.pipeline.cfd ? 2 : 1) * (2 * static_cast<int>(levels.size()) + 1) + 1;

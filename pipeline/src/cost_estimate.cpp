@@ -12,6 +12,7 @@
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/predictors.hpp"
+#include "pipeline/run.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
@@ -78,26 +79,15 @@ constexpr double kTypicalStationCiRelative = 0.006;
 constexpr double kTypicalBandHalfAngleDeg = 2.4;
 constexpr double kTypicalBowBandRelative = 0.35;
 
-double distance_to_body(scene::Vec2 p, const std::vector<scene::Vec2>& polygon) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < polygon.size(); ++i) {
-    const scene::Vec2 a = polygon[i], ab = polygon[(i + 1) % polygon.size()] - a;
-    const double len2 = scene::norm2(ab);
-    const double t = len2 > 0 ? std::clamp(scene::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, scene::norm(p - (a + t * ab)));
-  }
-  return best;
-}
-
 ShockCurve granular_shock(const scene::Scene& s, const BandScatter& scatter) {
   if (const std::optional<double> beta = scene::attached_shock_beta(s))
     return apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
                     *beta * 180.0 / std::numbers::pi,
                     band_angle_half_width_deg(kTypicalRunAngleCiDeg, scatter.angle_deg));
   ShockCurve c = billig_bow_shock(s, 0.0);
-  const std::vector<scene::Vec2> body = scene::make_body(*s.body).polyline;
+  const scene::BodyGeometry body = scene::make_body(*s.body);
   for (std::size_t i = 0; i < c.points.size(); ++i) {
-    const double d = distance_to_body(c.points[i], body);
+    const double d = std::abs(scene::signed_distance(body, c.points[i]));
     c.half_width[i] = band_bow_half_width(kTypicalStationCiRelative * d, d, scatter.bow_relative);
   }
   return c;
@@ -163,6 +153,14 @@ double granular_predictor_cpu(const scene::Scene& s) {
   return s.granular.cpu_budget ? std::min(cpu, *s.granular.cpu_budget) : cpu;
 }
 }  // namespace
+
+BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
+                         const std::string& calibration_path) {
+  if (predictor != "granular") return {};
+  scene::Scene preview = s;  // the run applies the table to its own copy and reports it
+  const AppliedCalibration c = apply_calibration(preview, calibration_path);
+  return {c.angle_scatter_deg, c.bow_shock_relative_rms};
+}
 
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
                          const BandScatter& scatter) {
@@ -239,17 +237,24 @@ std::optional<std::string> fit_default_sizes_to_budget(scene::Scene& s,
   // that far and says so, and the budget check then refuses the run unless
   // --force-budget is given. Where meshgen would refuse even those sizes,
   // its own error (exit 2) says what to set.
-  const double reached = total(sized(kMaxCoarsening));
-  if (!std::isfinite(reached)) return std::nullopt;
+  double cost = total(sized(kMaxCoarsening));  // the estimate at hi, the sizes chosen
+  if (!std::isfinite(cost)) return std::nullopt;
   double lo = 1.0, hi = kMaxCoarsening;  // estimate(lo) > budget >= estimate(hi)
-  for (int i = 0; i < kBisections && reached <= budget && hi / lo > 1.0 + 1e-3; ++i) {
-    const double mid = std::sqrt(lo * hi);
-    (total(sized(mid)) > budget ? lo : hi) = mid;
+  if (cost <= budget) {
+    for (int i = 0; i < kBisections && hi / lo > 1.0 + 1e-3; ++i) {
+      const double mid = std::sqrt(lo * hi);
+      const double at_mid = total(sized(mid));
+      if (at_mid > budget) {
+        lo = mid;
+      } else {
+        hi = mid;
+        cost = at_mid;
+      }
+    }
   }
   const scene::Scene t = sized(hi);
   s.mesh.h_min = t.mesh.h_min;
   s.mesh.h_max = t.mesh.h_max;
-  const double cost = estimate_run(s, predictor, scatter).total_cpu_seconds;
   char line[400];
   std::snprintf(
       line, sizeof line,

@@ -22,19 +22,6 @@
 #include "scene/scene.hpp"
 #include "scene/staging.hpp"
 
-namespace {
-// What the run's calibration will add to a granular prediction's band, read
-// from the table it will use (the scene itself is left as it is: the run
-// applies the table again and reports it).
-pipeline::BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
-                                   const std::string& calibration) {
-  if (predictor != "granular") return {};
-  scene::Scene preview = s;
-  const pipeline::AppliedCalibration c = pipeline::apply_calibration(preview, calibration);
-  return {c.angle_scatter_deg, c.bow_shock_relative_rms};
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   scene::install_interrupt_handler();
   return scene::run_guarded("pipeline", [&]() -> int {
@@ -172,7 +159,7 @@ int main(int argc, char** argv) {
         throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " + s.pipeline.calibration +
                                 " not found");
       (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
-      const pipeline::BandScatter scatter = band_scatter(s, predictor, calibration);
+      const pipeline::BandScatter scatter = pipeline::band_scatter(s, predictor, calibration);
       if (const auto sized = pipeline::fit_default_sizes_to_budget(s, predictor, scatter))
         scene::log_line(*sized, true);
       const auto estimate = pipeline::estimate_run(s, predictor, scatter);

@@ -15,7 +15,6 @@
 #include "pipeline/error_measures.hpp"
 #include "pipeline/grid_convergence.hpp"
 #include "pipeline/grid_runs.hpp"
-#include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 
 namespace {
@@ -229,16 +228,6 @@ TEST(CostEstimate, UniformWedgeGridWithinTheStatedAccuracy) {
   EXPECT_NO_THROW(pipeline::check_budget(s, e, true));
 }
 
-// What `pipeline run` passes to the estimate: the shipped table's scatter
-// for this scene.
-namespace {
-pipeline::BandScatter shipped_table_scatter(const scene::Scene& s) {
-  scene::Scene preview = s;
-  const auto c = pipeline::apply_calibration(preview, "");
-  return {c.angle_scatter_deg, c.bow_shock_relative_rms};
-}
-}  // namespace
-
 // Attached wedges are meshed with shock-aligned strips by default; the
 // clustered estimate is meshgen's own (strips counted exactly) round the
 // exact shock. Measured: the finest clustered grids of the three wedge case
@@ -251,7 +240,7 @@ TEST(CostEstimate, StripGridsOfTheWedgeCaseStudiesWithinTheStatedAccuracy) {
   for (const auto& [name, cells] : measured) {
     SCOPED_TRACE(name);
     const auto s = scene::load_scene(std::string(SOURCE_DIR) + "/pipeline/cases/" + name + ".yaml");
-    const auto e = pipeline::estimate_run(s, "granular", shipped_table_scatter(s));
+    const auto e = pipeline::estimate_run(s, "granular", pipeline::band_scatter(s, "granular", ""));
     const auto it = std::find_if(e.grids.begin(), e.grids.end(),
                                  [](const auto& g) { return g.name == "clustered_h1"; });
     ASSERT_NE(it, e.grids.end());
@@ -278,7 +267,7 @@ TEST(CostEstimate, BowShockGridsOfTheBluntCaseStudiesWithinTheStatedAccuracy) {
     SCOPED_TRACE(m.name);
     const auto s =
         scene::load_scene(std::string(SOURCE_DIR) + "/pipeline/cases/" + m.name + ".yaml");
-    const auto e = pipeline::estimate_run(s, "granular", shipped_table_scatter(s));
+    const auto e = pipeline::estimate_run(s, "granular", pipeline::band_scatter(s, "granular", ""));
     const auto cells = [&](const std::string& grid) {
       const auto it = std::find_if(e.grids.begin(), e.grids.end(),
                                    [&](const auto& g) { return g.name == grid; });

@@ -30,6 +30,12 @@ struct BandScatter {
   double bow_relative = scene::kNaN;
 };
 
+// The scatter a run of `predictor` will take from its calibration table
+// (`calibration_path`, "" for the scene's or the built-in one): the
+// granular predictor's only; the scene is left as it is.
+BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
+                         const std::string& calibration_path);
+
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
                          const BandScatter& scatter = {});
 

@@ -30,8 +30,13 @@ namespace {
 // against a write interval (tenths of seconds to seconds of wall time).
 constexpr double kPollSeconds = 0.05;
 // After asking the solver to stop (stopAt noWriteNow), how long to wait for
-// it to notice before sending SIGTERM: it re-reads controlDict every step.
-constexpr double kStopGraceSeconds = 30.0;
+// it to notice before sending SIGTERM. It re-reads controlDict every step,
+// but an edit that lands while it is still reading controlDict at start-up
+// can go unseen (it records the new time stamp with the old text), so the
+// request is backed by a signal well inside the interrupt watchdog's grace:
+// Ctrl-C must end as a clean "interrupted" run, not as the watchdog's exit.
+constexpr double kStopGraceSeconds = 10.0;
+static_assert(kStopGraceSeconds < 0.5 * scene::kInterruptGraceSeconds);
 // Slack when comparing a written time with logged step times.
 constexpr double kTimeSlack = 1e-9;
 

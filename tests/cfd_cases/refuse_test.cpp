@@ -5,11 +5,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -33,18 +34,27 @@ std::string fresh(const std::string& name) {
   return test_support::fresh_dir("cfd_refuse_" + name);
 }
 
-// True once a staging case beside --out holds a written time other than 0.
-bool wait_for_written_time(const std::string& dir, std::chrono::seconds limit) {
+// A time directory the solver wrote: a name that is a whole positive number
+// ("0.orig", written with the case before the solver starts, is not).
+bool is_positive_time(const std::string& name) {
+  char* end = nullptr;
+  const double t = std::strtod(name.c_str(), &end);
+  return !name.empty() && *end == '\0' && t > 0.0;
+}
+
+// True once a staging case beside --out holds an entry whose name passes
+// `wanted`, whatever the machine's speed.
+bool wait_for_staged(const std::string& dir, const std::function<bool(const std::string&)>& wanted,
+                     std::chrono::seconds limit) {
   const auto until = std::chrono::steady_clock::now() + limit;
   while (std::chrono::steady_clock::now() < until) {
     for (const auto& e : fs::directory_iterator(dir)) {
       if (e.path().filename().string().find(".staging-") == std::string::npos) continue;
       std::error_code ec;
       for (const auto& t : fs::directory_iterator(e.path(), ec))
-        if (t.is_directory() && t.path().filename() != "0" && std::isdigit(static_cast<unsigned char>(t.path().filename().string()[0])))
-          return true;
+        if (wanted(t.path().filename().string())) return true;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   return false;
 }
@@ -76,8 +86,15 @@ TEST(Refuse, OutEqualToOrAroundTheMeshIsRefused) {
   EXPECT_TRUE(fs::exists(dir + "/mesh/constant/polyMesh/faces"));
 }
 
-TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
-  const std::string dir = fresh("interrupt");
+namespace {
+
+// Runs `cfd run` on a case that never settles, sends SIGINT once the
+// staging case holds an entry that passes `signal_when`, and checks that the
+// run ends as an interrupted run: exit 1, the previous case untouched, the
+// interrupted one kept beside it, no temporaries.
+void expect_clean_interrupt(const std::string& name,
+                            const std::function<bool(const std::string&)>& signal_when) {
+  const std::string dir = fresh(name);
   const std::string s =
       write_scene(dir, std::string(kWedge) +
                            "cfd: {end_time: 1000, write_interval: 1, steady_tol: 1e-300, "
@@ -94,8 +111,7 @@ TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
           out.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // Interrupt once the solver has written a time, whatever the machine's speed.
-  ASSERT_TRUE(wait_for_written_time(dir, std::chrono::seconds(120)));
+  ASSERT_TRUE(wait_for_staged(dir, signal_when, std::chrono::seconds(120)));
   kill(pid, SIGINT);
   int st = 0;
   waitpid(pid, &st, 0);
@@ -106,6 +122,19 @@ TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
             "{\"previous\": true}\n");
   EXPECT_TRUE(fs::exists(out + ".failed"));
   EXPECT_FALSE(has_temporaries(dir));
+}
+
+}  // namespace
+
+TEST(Refuse, InterruptedRunKeepsThePreviousCase) {
+  expect_clean_interrupt("interrupt", is_positive_time);
+}
+
+// A Ctrl-C while the case is still being written or the solver is starting:
+// the stop request can land before the solver watches controlDict, and the
+// run must still end as an interrupted run within the watchdog's grace.
+TEST(Refuse, InterruptBeforeTheSolverRunsEndsAsAnInterruptedRun) {
+  expect_clean_interrupt("interrupt_early", [](const std::string& n) { return n == "0.orig"; });
 }
 
 TEST(Refuse, FinishedRunSummaryNamesTheFolderItWasMovedTo) {

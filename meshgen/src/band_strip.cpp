@@ -41,8 +41,6 @@ constexpr double kStripGap = 2.0;
 constexpr double kMinCornerSine = 0.5;
 // Fewer stations than this and the run stays isotropic.
 constexpr std::size_t kMinStations = 3;
-// Points checked along each column when trimming.
-constexpr int kColumnChecks = 8;
 // Boundary sampling: arcs to this sag, in h_min.
 constexpr double kBoundarySag = 0.05;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -151,25 +149,72 @@ std::vector<std::pair<double, double>> width_pieces(const Polyline& line, double
   return out;
 }
 
-// Distance from p to the region's boundary (up to a cut-off).
-class BoundaryDistance {
+// Distance between segments ab and cd (zero when they cross).
+double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const auto side = [](Vec2 o, Vec2 p, Vec2 q) { return scene::cross(p - o, q - o); };
+  if (side(c, d, a) * side(c, d, b) < 0 && side(a, b, c) * side(a, b, d) < 0) return 0.0;
+  const auto to_segment = [](Vec2 p, Vec2 s, Vec2 e) {
+    const Vec2 se = e - s;
+    const double len2 = scene::dot(se, se);
+    const double f = len2 > 0 ? std::clamp(scene::dot(p - s, se) / len2, 0.0, 1.0) : 0.0;
+    return scene::norm(p - (s + f * se));
+  };
+  return std::min(
+      {to_segment(a, c, d), to_segment(b, c, d), to_segment(c, a, b), to_segment(d, a, b)});
+}
+
+// What a strip's outline must keep clear of, tested exactly on segments: the
+// region's boundary (its curves sampled to a sag) and the outlines of the
+// strips already placed. Sampling points along a column is not enough: two
+// strips of one run whose end columns tilt towards each other cross between
+// samples, and gmsh then splits the crossing lines, which a transfinite
+// strip cannot survive.
+class Obstacles {
  public:
-  BoundaryDistance(const FluidRegion& region, double sag, double cutoff) {
+  Obstacles(const FluidRegion& region, double sag) {
     for (const auto& loop : region.loops) {
       std::vector<Vec2> pts;
       for (const BoundaryCurve& c : loop) {
         const std::vector<Vec2> s = sample_curve(c, sag);
         pts.insert(pts.end(), s.begin(), s.end());
       }
-      if (!pts.empty()) pts.push_back(pts.front());
-      index_.add_polyline(pts, {});
+      add_loop(pts);
     }
-    index_.build(cutoff);
   }
-  double operator()(Vec2 p) const { return index_.excess(p); }
+  void add_strip(const std::vector<Vec2>& outline) {
+    add_loop(outline);
+    strips_.push_back(outline);
+  }
+  // Whether segment ab stays `margin` away from every obstacle and neither
+  // end lies inside a placed strip (a strip wholly inside another crosses
+  // nothing).
+  bool clear(Vec2 a, Vec2 b, double margin) const {
+    const Vec2 lo{std::min(a.x, b.x) - margin, std::min(a.y, b.y) - margin};
+    const Vec2 hi{std::max(a.x, b.x) + margin, std::max(a.y, b.y) + margin};
+    for (const Seg& s : segs_) {
+      if (s.hi.x < lo.x || s.lo.x > hi.x || s.hi.y < lo.y || s.lo.y > hi.y) continue;
+      if (segment_distance(a, b, s.a, s.b) < margin) return false;
+    }
+    for (const auto& poly : strips_)
+      if (inside_polygon(poly, a) || inside_polygon(poly, b)) return false;
+    return true;
+  }
 
  private:
-  SegmentIndex index_;
+  struct Seg {
+    Vec2 a, b, lo, hi;
+  };
+  void add_loop(const std::vector<Vec2>& pts) {
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const Vec2 a = pts[k], b = pts[(k + 1) % pts.size()];
+      segs_.push_back({a,
+                       b,
+                       {std::min(a.x, b.x), std::min(a.y, b.y)},
+                       {std::max(a.x, b.x), std::max(a.y, b.y)}});
+    }
+  }
+  std::vector<Seg> segs_;
+  std::vector<std::vector<Vec2>> strips_;
 };
 
 // Stations along one run: positions in arc length.
@@ -193,17 +238,18 @@ std::vector<double> station_positions(const Polyline& line, const StripRule& rul
   return s;
 }
 
+// Whether column i lies in the region, clear of the obstacles.
 bool column_fits(const ShockStrip& strip, std::size_t i, const FluidRegion& region,
-                 const BoundaryDistance& dist, const std::vector<std::vector<Vec2>>& others,
-                 double margin) {
+                 const Obstacles& obstacles, double margin) {
   const Vec2 a = strip.node(i, 0), b = strip.node(i, strip.rows.size() - 1);
-  for (int k = 0; k <= kColumnChecks; ++k) {
-    const Vec2 p = a + (static_cast<double>(k) / kColumnChecks) * (b - a);
-    if (!region.contains(p) || dist(p) < margin) return false;
-    for (const auto& poly : others)
-      if (inside_polygon(poly, p)) return false;
-  }
-  return true;
+  return region.contains(a) && obstacles.clear(a, b, margin);
+}
+
+// Whether the strip's two long sides between columns i and i + 1 are clear.
+bool sides_fit(const ShockStrip& strip, std::size_t i, const Obstacles& obstacles, double margin) {
+  const std::size_t top = strip.rows.size() - 1;
+  return obstacles.clear(strip.node(i, 0), strip.node(i + 1, 0), margin) &&
+         obstacles.clear(strip.node(i, top), strip.node(i + 1, top), margin);
 }
 
 // Whether the quads between columns i and i + 1 are sound: convex, turning
@@ -258,7 +304,7 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
   BandLayout out;
   const double margin = kStripMargin * rule.h_min;
   const double l_max = rule.max_aspect * rule.h_min;
-  std::vector<std::vector<Vec2>> placed;
+  Obstacles obstacles(region, kBoundarySag * rule.h_min);
   const auto lay = [&](const ShockRun& run) {
     const Polyline line(run);
     // One half-width for the whole strip, the run's widest: scaling the rows
@@ -272,7 +318,6 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
     strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_run);
     const double half_width = strip.rows.back();
-    const BoundaryDistance dist(region, kBoundarySag * rule.h_min, half_width + 2 * margin);
     for (const double t : s) {
       strip.centre.push_back(line.at(t));
       strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));
@@ -280,9 +325,10 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     std::vector<bool> ok(s.size());
     for (std::size_t i = 0; i < s.size(); ++i)
       ok[i] = line.curvature(s[i], l_max) * half_width <= kMaxWidthCurvature &&
-              column_fits(strip, i, region, dist, placed, margin);
+              column_fits(strip, i, region, obstacles, margin);
     std::vector<bool> joined(s.size(), false);
-    for (std::size_t i = 0; i + 1 < s.size(); ++i) joined[i] = quads_sound(strip, i);
+    for (std::size_t i = 0; i + 1 < s.size(); ++i)
+      joined[i] = quads_sound(strip, i) && sides_fit(strip, i, obstacles, margin);
     const auto [a, b] = longest_fit(ok, joined);
     if (b - a < kMinStations) {
       out.uncovered.push_back(run);
@@ -297,7 +343,7 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     }
     if (a > 0) out.uncovered.push_back(line.piece(0.0, s[a]));
     if (b < s.size()) out.uncovered.push_back(line.piece(s[b - 1], line.length()));
-    placed.push_back(kept.outline());
+    obstacles.add_strip(kept.outline());
     out.strips.push_back(std::move(kept));
   };
   for (const ShockRun& run : runs) {

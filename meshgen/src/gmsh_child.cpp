@@ -1,5 +1,6 @@
 #include "gmsh_child.hpp"
 
+#include <gmsh.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -90,10 +91,30 @@ PlaneMesh read_mesh(const std::string& path) {
   return m;
 }
 
+// The child's scratch file, for the terminate handler (which takes no
+// arguments): set once, in the child only.
+const std::string*& child_scratch() {
+  static const std::string* path = nullptr;
+  return path;
+}
+
+// gmsh reports some errors by throwing from inside its OpenMP regions, where
+// no handler can catch them and the process terminates. Its last logged
+// error then becomes the child's message instead of a bare "crashed".
+[[noreturn]] void on_terminate() {
+  std::string last;
+  gmsh::logger::getLastError(last);
+  if (child_scratch() != nullptr)
+    std::ofstream(*child_scratch()) << "gmsh failed: " << (last.empty() ? "aborted" : last);
+  std::_Exit(kChildRunError);
+}
+
 [[noreturn]] void child(const std::function<PlaneMesh()>& mesh, const std::string& scratch) {
   // The parent decides about Ctrl-C (it kills this process); a terminal's
   // SIGINT reaches the whole process group, so ignore it here.
   std::signal(SIGINT, SIG_IGN);
+  child_scratch() = &scratch;
+  std::set_terminate(on_terminate);
   int code = 0;
   try {
     write_mesh(mesh(), scratch);

@@ -395,28 +395,12 @@ BandSize::BandSize(const SizeParams& p, const BandLayout& layout,
 StripGridCount count_cells(const BandLayout& layout, const BandSize& size,
                            const FluidRegion& region) {
   StripGridCount c;
-  struct Box {
-    std::vector<Vec2> outline;
-    Vec2 lo, hi;
-  };
-  std::vector<Box> boxes;
+  std::vector<std::vector<Vec2>> outlines;
   for (const ShockStrip& st : layout.strips) {
     c.strip_cells += static_cast<double>(st.cells());
-    Box b{st.outline(), {kInf, kInf}, {-kInf, -kInf}};
-    for (const Vec2& q : b.outline) {
-      b.lo = {std::min(b.lo.x, q.x), std::min(b.lo.y, q.y)};
-      b.hi = {std::max(b.hi.x, q.x), std::max(b.hi.y, q.y)};
-    }
-    boxes.push_back(std::move(b));
+    outlines.push_back(st.outline());
   }
-  const auto in_strip = [&boxes](Vec2 p) {
-    for (const Box& b : boxes)
-      if (p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y &&
-          inside_polygon(b.outline, p))
-        return true;
-    return false;
-  };
-  c.unstructured = estimate_cells([&size](Vec2 p) { return size(p); }, region, in_strip);
+  c.unstructured = estimate_cells([&size](Vec2 p) { return size(p); }, region, outlines);
   return c;
 }
 

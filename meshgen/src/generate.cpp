@@ -43,6 +43,9 @@ namespace {
 constexpr double kTargetTolerance = 0.10;
 constexpr double kTargetRetry = 0.05;
 constexpr int kMaxTargetAttempts = 4;
+// A mesh within this fraction of its estimate leaves nothing to correct: a
+// retry would choose the same sizes.
+constexpr double kEstimateHeld = 0.01;
 // Cells per h^2 of area: gmsh's recombined quad-dominant grids hold 1.5
 // (measured / integrated 1.47-1.57 over every uniform, isotropic-band and
 // strip grid of the recorded case-study runs, docs/meshgen.md); a triangle
@@ -218,6 +221,7 @@ double body_size(const MeshRequest& r, const scene::MeshParams& mp, const SizePa
 struct CheckedPlan {
   Plan plan;
   double estimate = 0;  // cells at the requested sizes (first attempt)
+  double scale = 1.0;   // the sizes' scale that meets a target cell count (first attempt)
 };
 
 CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const FluidRegion& region,
@@ -270,8 +274,8 @@ CheckedPlan make_checked_plan(const scene::Scene& s, const MeshRequest& r, const
   {
     // The estimate at the requested sizes, before anything is written.
     const double cells_per_h2 = mp.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
-    const double scale0 = plan.target ? solve_scale(plan, region, *plan.target, cells_per_h2) : 1.0;
-    const Sizing z = plan.at(scale0, region);
+    c.scale = plan.target ? solve_scale(plan, region, *plan.target, cells_per_h2) : 1.0;
+    const Sizing z = plan.at(c.scale, region);
     c.estimate = plan.cells(z, region, cells_per_h2);
     check_estimate(where, c.estimate, plan.uniform ? z.uniform_h : z.params.h_min, flow_area);
   }
@@ -342,14 +346,17 @@ PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField
   return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
 }
 
-Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
+Meshed mesh_to_target(const CheckedPlan& checked, const FluidRegion& region, GmshJob& job,
                       const fs::path& stage, const std::string& where, const std::string& out_dir) {
+  const Plan& plan = checked.plan;
   const double flow_area = region.domain.width() * region.domain.height();
-  double scale = 1.0, calibration = job.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
+  double scale = checked.scale,
+         calibration = job.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
   Meshed m;
   for (;;) {
     ++m.attempts;
-    if (plan.target) scale = solve_scale(plan, region, *plan.target, calibration);
+    // The first attempt's scale was solved with the plan.
+    if (plan.target && m.attempts > 1) scale = solve_scale(plan, region, *plan.target, calibration);
     m.sizing = plan.at(scale, region);
     if (!plan.curve.empty() && m.sizing.runs.empty())
       throw scene::InputError(where + "the shock curve lies wholly outside the flow region (inside the body or "
@@ -373,14 +380,21 @@ Meshed mesh_to_target(const Plan& plan, const FluidRegion& region, GmshJob& job,
     const double n = static_cast<double>(m.mesh.cells.size());
     const double miss = std::abs(n / *plan.target - 1.0);
     if (miss <= kTargetRetry) break;
-    if (m.attempts >= kMaxTargetAttempts) {
+    // The estimate was right, so the count itself jumps near the target (a
+    // strip that fits or not): another mesh would land on the same grid.
+    const bool estimate_held = std::abs(n / m.estimate - 1.0) <= kEstimateHeld;
+    if (m.attempts >= kMaxTargetAttempts || estimate_held) {
       if (miss <= kTargetTolerance) break;
       throw scene::RunError(where + "target_cells " +
                             std::to_string(static_cast<long>(*plan.target)) +
                             " not met within 10% after " + std::to_string(m.attempts) +
                             " meshes (last " + std::to_string(m.mesh.cells.size()) + ")");
     }
-    calibration *= n / m.estimate;
+    // Strip cells are counted exactly: only the unstructured grid's count
+    // per h^2 is corrected, or a grid mostly of strips would over-correct.
+    double strip_cells = 0.0;
+    for (const ShockStrip& st : m.band.strips) strip_cells += static_cast<double>(st.cells());
+    calibration *= std::max(n - strip_cells, 1.0) / std::max(m.estimate - strip_cells, 1.0);
   }
   return m;
 }
@@ -571,7 +585,7 @@ MeshResult generate_mesh(const scene::Scene& s, const MeshRequest& r, const std:
   scene::StagedDir staged(out_dir);
   const fs::path stage(staged.path());
   GmshJob job = gmsh_job(s.mesh);
-  const Meshed m = mesh_to_target(plan, region, job, stage, where, out_dir);
+  const Meshed m = mesh_to_target(checked, region, job, stage, where, out_dir);
 
   MeshResult res;
   res.kind = plan.uniform ? "uniform" : plan.size_lattice ? "adapted" : "clustered";

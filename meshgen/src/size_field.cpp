@@ -181,18 +181,66 @@ bool SizeField::in_band(Vec2 p) const {
 }
 
 double estimate_cells(const SizeField& f, const FluidRegion& region) {
-  return estimate_cells([&f](Vec2 p) { return f(p); }, region, [](Vec2) { return false; });
+  return estimate_cells([&f](Vec2 p) { return f(p); }, region, {});
 }
 
+namespace {
+
+// Which points of an n x n lattice of cell centres over `d` lie inside any of
+// `polygons` (row-major). Scanlines through the rows' centres, each edge
+// entered in the rows it crosses: a point-in-polygon test per point and
+// polygon cost more than the sum itself on grids of long strips.
+std::vector<char> lattice_mask(const std::vector<std::vector<Vec2>>& polygons,
+                               const scene::Domain& d, int n) {
+  const double dx = d.width() / n, dy = d.height() / n;
+  std::vector<char> mask(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+  std::vector<std::vector<double>> crossings(static_cast<std::size_t>(n));
+  for (const auto& poly : polygons) {
+    for (auto& row : crossings) row.clear();
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const Vec2 a = poly[k], b = poly[(k + 1) % poly.size()];
+      if (a.y == b.y) continue;
+      const double y0 = std::min(a.y, b.y), y1 = std::max(a.y, b.y);
+      // Rows whose centre y satisfies y0 <= y < y1 (half-open: a vertex
+      // shared by two edges is counted once).
+      const int j0 = std::max(0, static_cast<int>(std::ceil((y0 - d.ymin) / dy - 0.5)));
+      const int j1 = std::min(n - 1, static_cast<int>(std::ceil((y1 - d.ymin) / dy - 0.5)) - 1);
+      for (int j = j0; j <= j1; ++j) {
+        const double y = d.ymin + (j + 0.5) * dy;
+        crossings[static_cast<std::size_t>(j)].push_back(a.x +
+                                                         (y - a.y) * (b.x - a.x) / (b.y - a.y));
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      auto& xs = crossings[static_cast<std::size_t>(j)];
+      std::sort(xs.begin(), xs.end());
+      for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+        const int i0 = std::max(0, static_cast<int>(std::ceil((xs[k] - d.xmin) / dx - 0.5)));
+        const int i1 =
+            std::min(n - 1, static_cast<int>(std::ceil((xs[k + 1] - d.xmin) / dx - 0.5)) - 1);
+        for (int i = i0; i <= i1; ++i)
+          mask[static_cast<std::size_t>(j) * static_cast<std::size_t>(n) +
+               static_cast<std::size_t>(i)] = 1;
+      }
+    }
+  }
+  return mask;
+}
+
+}  // namespace
+
 double estimate_cells(const std::function<double(Vec2)>& f, const FluidRegion& region,
-                      const std::function<bool(Vec2)>& skip) {
+                      const std::vector<std::vector<Vec2>>& holes) {
   const scene::Domain& d = region.domain;
   const double dx = d.width() / kEstimateLattice, dy = d.height() / kEstimateLattice;
+  const std::vector<char> in_hole = lattice_mask(holes, d, kEstimateLattice);
   double n = 0.0;
   for (int j = 0; j < kEstimateLattice; ++j)
     for (int i = 0; i < kEstimateLattice; ++i) {
+      if (in_hole[static_cast<std::size_t>(j) * kEstimateLattice + static_cast<std::size_t>(i)])
+        continue;
       const Vec2 p{d.xmin + (i + 0.5) * dx, d.ymin + (j + 0.5) * dy};
-      if (!region.contains(p) || skip(p)) continue;
+      if (!region.contains(p)) continue;
       const double h = f(p);
       n += dx * dy / (h * h);
     }

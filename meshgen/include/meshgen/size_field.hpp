@@ -117,9 +117,10 @@ class SizeField {
 
 // Estimated number of cells sum(dA / h^2) over the region, on a fine lattice.
 double estimate_cells(const SizeField& f, const FluidRegion& region);
-// The same sum for any size function, leaving out the points where `skip`
-// holds (parts of the grid counted otherwise, such as structured strips).
+// The same sum for any size function, leaving out the points inside
+// `holes` (closed simple polygons: parts of the grid counted otherwise, such
+// as structured strips).
 double estimate_cells(const std::function<double(scene::Vec2)>& h, const FluidRegion& region,
-                      const std::function<bool(scene::Vec2)>& skip);
+                      const std::vector<std::vector<scene::Vec2>>& holes);
 
 }  // namespace meshgen

@@ -332,6 +332,9 @@ struct Meshed {
   double estimate = 0.0;      // cells estimated for the last attempt
   int attempts = 0;
   BandLayout band;  // shock-aligned strips (mesh.anisotropy > 1)
+  // Why gmsh could not mesh round the strips, when it could not: the band
+  // was then meshed isotropically (mesh.anisotropy 1).
+  std::optional<std::string> strips_dropped;
 };
 
 // gmsh on the plan's field, or round shock-aligned strips when the plan asks
@@ -348,7 +351,7 @@ PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField
 
 Meshed mesh_to_target(const CheckedPlan& checked, const FluidRegion& region, GmshJob& job,
                       const fs::path& stage, const std::string& where, const std::string& out_dir) {
-  const Plan& plan = checked.plan;
+  Plan plan = checked.plan;  // loses its strips if gmsh cannot mesh round them
   const double flow_area = region.domain.width() * region.domain.height();
   double scale = checked.scale,
          calibration = job.recombine ? kCellsPerH2Quads : kCellsPerH2Triangles;
@@ -371,7 +374,18 @@ Meshed mesh_to_target(const CheckedPlan& checked, const FluidRegion& region, Gms
     stop_if_interrupted("before meshing", out_dir);
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu_before = scene::children_cpu_seconds();
-    m.mesh = mesh_plan(plan, region, field, m, job, stage);
+    try {
+      m.mesh = mesh_plan(plan, region, field, m, job, stage);
+    } catch (const scene::RunError& e) {
+      // A strip layout gmsh rejects should not cost the grid: the band
+      // meshed isotropically is the grid the scene had before strips.
+      if (!plan.strips() || scene::interrupted()) throw;
+      m.strips_dropped = e.what();
+      plan.anisotropy = 1.0;
+      m.band = {};
+      m.estimate = plan.cells(m.sizing, region, calibration);
+      m.mesh = mesh_plan(plan, region, field, m, job, stage);
+    }
     m.gmsh_seconds = seconds_since(t0);
     // The child's CPU time: what gmsh itself cost, whatever the load; every
     // attempt at a target cell count costs.
@@ -519,7 +533,9 @@ nlohmann::json mesh_details(const scene::Scene& s, const Plan& plan, const Fluid
   const auto band_figure = [&](double v) {
     return sizes.band_cells ? nlohmann::json(v) : nlohmann::json(nullptr);
   };
-  j["anisotropy"] = plan.anisotropy;
+  j["anisotropy"] = m.strips_dropped ? 1.0 : plan.anisotropy;
+  j["strips_dropped"] =
+      m.strips_dropped ? nlohmann::json(*m.strips_dropped) : nlohmann::json(nullptr);
   j["band_max_aspect_ratio"] = band_figure(sizes.band_shape.max_aspect);
   j["band_mean_aspect_ratio"] = band_figure(sizes.band_shape.mean_aspect);
   j["band_max_thickness"] = band_figure(sizes.band_shape.max_thickness);

@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     const meshgen::MeshResult r = meshgen::generate_mesh(s, req, out_dir);
+    if (const auto dropped = r.details.find("strips_dropped");
+        dropped != r.details.end() && dropped->is_string())
+      std::cerr << "meshgen: warning: gmsh could not mesh round the shock-aligned strips ("
+                << dropped->get<std::string>() << "); the band was meshed isotropically\n";
     std::cout << "meshgen: " << r.kind << " grid, " << r.cells << " cells, h " << r.min_cell_size << " .. "
               << r.max_cell_size << ", max non-orthogonality " << r.max_non_orthogonality << ", max skewness "
               << r.max_skewness << ", checkMesh " << (r.check_mesh_ok ? "OK" : "FAILED") << ", gmsh " << r.seconds

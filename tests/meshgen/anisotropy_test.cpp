@@ -7,8 +7,10 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "gmsh_child.hpp"
 #include "meshgen/mesh.hpp"
 #include "scene/body_traits.hpp"
+#include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
 #include "shock_fixtures.hpp"
@@ -163,6 +165,40 @@ TEST(Anisotropy, StripsOfAWideningGranularShockNeverCross) {
     EXPECT_TRUE(m.check_mesh_ok) << h_min << ": " << j.value("check_mesh_failures", "");
     EXPECT_LT(m.max_non_orthogonality, kMaxNonOrthogonality) << h_min;
     EXPECT_GE(j["band_strips"].get<long>(), 2) << h_min;
+  }
+}
+
+// Strips gmsh cannot mesh round (here two that cross: gmsh splits the
+// crossing lines, then aborts on the transfinite surface from inside a
+// thread where nothing can catch it) end the meshing child with gmsh's own
+// message, a RunError the caller can act on, not "crashed (signal 6)".
+TEST(Anisotropy, StripsGmshRejectsFailWithGmshsOwnMessage) {
+  scene::Scene s = scene::load_scene(meshgen_test::case_path("wedge_M3_10"));
+  s.domain_override = scene::Domain{-1.0, 4.0, 0.0, 4.0, true};
+  const meshgen::FluidRegion region = meshgen::make_fluid_region(s);
+  const auto strip = [](scene::Vec2 from, scene::Vec2 to) {
+    meshgen::ShockStrip st;
+    constexpr int kStations = 6;
+    const scene::Vec2 along = scene::normalized(to - from);
+    for (int i = 0; i < kStations; ++i) {
+      st.centre.push_back(from + (static_cast<double>(i) / (kStations - 1)) * (to - from));
+      st.normal.push_back(scene::perp(along));
+    }
+    st.rows = {-0.1, -0.05, 0.0, 0.05, 0.1};
+    st.along.assign(kStations - 1, scene::norm(to - from) / (kStations - 1));
+    return st;
+  };
+  const std::vector<meshgen::ShockStrip> crossing{strip({1.0, 2.0}, {3.0, 2.0}),
+                                                  strip({2.0, 1.0}, {2.0, 3.0})};
+  meshgen::GmshJob job;
+  constexpr double kCell = 0.1;
+  const std::string scratch = meshgen_test::fresh_dir("aniso_rejected") + "/plane_mesh.bin";
+  try {
+    meshgen::mesh_with_gmsh_in_child(
+        region, [](scene::Vec2) { return kCell; }, crossing, job, scratch);
+    FAIL() << "gmsh meshed round two crossing strips";
+  } catch (const scene::RunError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("gmsh failed: ", 0), 0u) << e.what();
   }
 }
 

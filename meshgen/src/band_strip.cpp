@@ -41,6 +41,14 @@ constexpr double kStripGap = 2.0;
 constexpr double kMinCornerSine = 0.5;
 // Fewer stations than this and the run stays isotropic.
 constexpr std::size_t kMinStations = 3;
+// A strip covering less than kFullCover of its run is tried again at
+// kAspectRetry times its aspect, down to kMinStripAspect (below it a strip's
+// cells are hardly longer than the isotropic band's); a retry is kept when
+// it covers kRetryGain times the arc length.
+constexpr double kFullCover = 0.8;
+constexpr double kAspectRetry = 0.5;
+constexpr double kMinStripAspect = 2.0;
+constexpr double kRetryGain = 1.25;
 // Boundary sampling: arcs to this sag, in h_min.
 constexpr double kBoundarySag = 0.05;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -303,20 +311,27 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
                          const StripRule& rule) {
   BandLayout out;
   const double margin = kStripMargin * rule.h_min;
-  const double l_max = rule.max_aspect * rule.h_min;
   Obstacles obstacles(region, kBoundarySag * rule.h_min);
-  const auto lay = [&](const ShockRun& run) {
-    const Polyline line(run);
+  // The strip along `run` at rule r: its longest part whose columns fit
+  // (none if fewer than kMinStations do), and the arc length it covers.
+  struct Candidate {
+    ShockStrip strip;
+    double from = 0.0, to = 0.0;  // arc length along the run
+    bool at_start = false, at_end = false;
+    double covered() const { return strip.stations() > 0 ? to - from : 0.0; }
+  };
+  const auto fit = [&](const Polyline& line, const StripRule& r) {
+    const double l_max = r.max_aspect * r.h_min;
     // One half-width for the whole strip, the run's widest: scaling the rows
     // with the local ci would thin them below h_min where the ci narrows
     // (near a wedge's apex), and the thinnest row sets the time step.
-    const double w_max = *std::max_element(run.half_width.begin(), run.half_width.end());
+    const double w_max = *std::max_element(line.w.begin(), line.w.end());
     ShockStrip strip;
-    const std::vector<double> s = station_positions(line, rule);
+    const std::vector<double> s = station_positions(line, r);
     // Growth rows end at the longest cell this strip has, not at a h_min.
-    double l_run = rule.h_min;
+    double l_run = r.h_min;
     for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
-    strip.rows = make_rows(std::max(w_max, rule.h_min), rule.h_min, l_run);
+    strip.rows = make_rows(std::max(w_max, r.h_min), r.h_min, l_run);
     const double half_width = strip.rows.back();
     for (const double t : s) {
       strip.centre.push_back(line.at(t));
@@ -330,21 +345,43 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
     for (std::size_t i = 0; i + 1 < s.size(); ++i)
       joined[i] = quads_sound(strip, i) && sides_fit(strip, i, obstacles, margin);
     const auto [a, b] = longest_fit(ok, joined);
-    if (b - a < kMinStations) {
+    Candidate c;
+    if (b - a < kMinStations) return c;
+    c.strip.rows = strip.rows;
+    for (std::size_t i = a; i < b; ++i) {
+      c.strip.centre.push_back(strip.centre[i]);
+      c.strip.normal.push_back(strip.normal[i]);
+      if (i + 1 < b) c.strip.along.push_back(s[i + 1] - s[i]);
+    }
+    c.from = s[a];
+    c.to = s[b - 1];
+    c.at_start = a == 0;
+    c.at_end = b == s.size();
+    return c;
+  };
+  // A strip's growth rows reach out to its longest cell, so on a coarse
+  // grid of a small domain they cross the body or the domain's edge and
+  // few columns fit (or none: a coarse grid without its strip can then have
+  // more cells than a finer one with it). When the full aspect covers less
+  // than kFullCover of the run, shorter cells (fewer growth rows) are tried,
+  // each kept only if it covers kRetryGain times more.
+  const auto lay = [&](const ShockRun& run) {
+    const Polyline line(run);
+    Candidate best = fit(line, rule);
+    for (StripRule r = rule; best.covered() < kFullCover * line.length();) {
+      r.max_aspect *= kAspectRetry;
+      if (r.max_aspect < kMinStripAspect) break;
+      Candidate c = fit(line, r);
+      if (c.covered() > kRetryGain * best.covered()) best = std::move(c);
+    }
+    if (best.strip.stations() == 0) {
       out.uncovered.push_back(run);
       return;
     }
-    ShockStrip kept;
-    kept.rows = strip.rows;
-    for (std::size_t i = a; i < b; ++i) {
-      kept.centre.push_back(strip.centre[i]);
-      kept.normal.push_back(strip.normal[i]);
-      if (i + 1 < b) kept.along.push_back(s[i + 1] - s[i]);
-    }
-    if (a > 0) out.uncovered.push_back(line.piece(0.0, s[a]));
-    if (b < s.size()) out.uncovered.push_back(line.piece(s[b - 1], line.length()));
-    obstacles.add_strip(kept.outline());
-    out.strips.push_back(std::move(kept));
+    if (!best.at_start) out.uncovered.push_back(line.piece(0.0, best.from));
+    if (!best.at_end) out.uncovered.push_back(line.piece(best.to, line.length()));
+    obstacles.add_strip(best.strip.outline());
+    out.strips.push_back(std::move(best.strip));
   };
   for (const ShockRun& run : runs) {
     if (run.points.size() < 2) {

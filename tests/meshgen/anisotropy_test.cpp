@@ -168,6 +168,34 @@ TEST(Anisotropy, StripsOfAWideningGranularShockNeverCross) {
   }
 }
 
+// The case study's clustered family as `pipeline run` meshes it (its band
+// round the apex ray, recorded from a studies run): on coarse levels the
+// strip's growth rows crossed the wedge or the domain's edge, no strip (or
+// a short one) was laid, and the h 1.8 grid had more cells (2303) than the
+// h 1.4 one (2251). Shorter strip cells are now tried where the full aspect
+// covers too little: every level keeps a strip and the family's cells grow
+// with its resolution.
+TEST(Anisotropy, EveryLevelOfAWedgeFamilyKeepsAStripAndCellsGrowWithResolution) {
+  const scene::Scene s = scene::load_scene(meshgen_test::case_path("wedge_M3_10"));
+  const std::string ray = std::string(SOURCE_DIR) + "/tests/data/wedge_M3_10_shock_ray.csv";
+  constexpr double kLevels[] = {10, 7, 5, 3.5, 2.5, 1.8, 1.4, 1};
+  constexpr double kCaseHMin = 0.0047, kCaseHMax = 0.1;
+  long previous = 0;
+  for (const double level : kLevels) {
+    const std::string dir = meshgen_test::fresh_dir("aniso_family");
+    meshgen::MeshRequest r = meshgen::request_from_shock_csv(ray);
+    r.h_min = kCaseHMin * level;
+    r.h_max = kCaseHMax * level;
+    const meshgen::MeshResult m = meshgen::generate_mesh(s, r, dir);
+    const nlohmann::json j = summary(dir);
+    EXPECT_TRUE(m.check_mesh_ok) << level;
+    EXPECT_LT(m.max_non_orthogonality, kMaxNonOrthogonality) << level;
+    EXPECT_GE(j["band_strips"].get<long>(), 1) << level;
+    EXPECT_GT(m.cells, previous) << "level " << level;
+    previous = m.cells;
+  }
+}
+
 // Strips gmsh cannot mesh round (here two that cross: gmsh splits the
 // crossing lines, then aborts on the transfinite surface from inside a
 // thread where nothing can catch it) end the meshing child with gmsh's own

@@ -295,6 +295,56 @@ std::pair<std::size_t, std::size_t> longest_fit(const std::vector<bool>& ok,
   return {best_a, best_a + best_n};  // half-open
 }
 
+// The strip along `line` at rule r: its longest part whose columns fit
+// (none if fewer than kMinStations do), and the arc length it covers.
+struct Candidate {
+  ShockStrip strip;
+  double from = 0.0, to = 0.0;  // arc length along the run
+  bool at_start = false, at_end = false;
+  double covered() const { return strip.stations() > 0 ? to - from : 0.0; }
+};
+
+Candidate fit_strip(const Polyline& line, const StripRule& r, const FluidRegion& region,
+                    const Obstacles& obstacles, double margin) {
+  const double l_max = r.max_aspect * r.h_min;
+  // One half-width for the whole strip, the run's widest: scaling the rows
+  // with the local ci would thin them below h_min where the ci narrows
+  // (near a wedge's apex), and the thinnest row sets the time step.
+  const double w_max = *std::max_element(line.w.begin(), line.w.end());
+  ShockStrip strip;
+  const std::vector<double> s = station_positions(line, r);
+  // Growth rows end at the longest cell this strip has, not at a h_min.
+  double l_run = r.h_min;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
+  strip.rows = make_rows(std::max(w_max, r.h_min), r.h_min, l_run);
+  const double half_width = strip.rows.back();
+  for (const double t : s) {
+    strip.centre.push_back(line.at(t));
+    strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));
+  }
+  std::vector<bool> ok(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    ok[i] = line.curvature(s[i], l_max) * half_width <= kMaxWidthCurvature &&
+            column_fits(strip, i, region, obstacles, margin);
+  std::vector<bool> joined(s.size(), false);
+  for (std::size_t i = 0; i + 1 < s.size(); ++i)
+    joined[i] = quads_sound(strip, i) && sides_fit(strip, i, obstacles, margin);
+  const auto [a, b] = longest_fit(ok, joined);
+  Candidate c;
+  if (b - a < kMinStations) return c;
+  c.strip.rows = strip.rows;
+  for (std::size_t i = a; i < b; ++i) {
+    c.strip.centre.push_back(strip.centre[i]);
+    c.strip.normal.push_back(strip.normal[i]);
+    if (i + 1 < b) c.strip.along.push_back(s[i + 1] - s[i]);
+  }
+  c.from = s[a];
+  c.to = s[b - 1];
+  c.at_start = a == 0;
+  c.at_end = b == s.size();
+  return c;
+}
+
 }  // namespace
 
 std::vector<Vec2> ShockStrip::outline() const {
@@ -312,53 +362,6 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
   BandLayout out;
   const double margin = kStripMargin * rule.h_min;
   Obstacles obstacles(region, kBoundarySag * rule.h_min);
-  // The strip along `run` at rule r: its longest part whose columns fit
-  // (none if fewer than kMinStations do), and the arc length it covers.
-  struct Candidate {
-    ShockStrip strip;
-    double from = 0.0, to = 0.0;  // arc length along the run
-    bool at_start = false, at_end = false;
-    double covered() const { return strip.stations() > 0 ? to - from : 0.0; }
-  };
-  const auto fit = [&](const Polyline& line, const StripRule& r) {
-    const double l_max = r.max_aspect * r.h_min;
-    // One half-width for the whole strip, the run's widest: scaling the rows
-    // with the local ci would thin them below h_min where the ci narrows
-    // (near a wedge's apex), and the thinnest row sets the time step.
-    const double w_max = *std::max_element(line.w.begin(), line.w.end());
-    ShockStrip strip;
-    const std::vector<double> s = station_positions(line, r);
-    // Growth rows end at the longest cell this strip has, not at a h_min.
-    double l_run = r.h_min;
-    for (std::size_t i = 0; i + 1 < s.size(); ++i) l_run = std::max(l_run, s[i + 1] - s[i]);
-    strip.rows = make_rows(std::max(w_max, r.h_min), r.h_min, l_run);
-    const double half_width = strip.rows.back();
-    for (const double t : s) {
-      strip.centre.push_back(line.at(t));
-      strip.normal.push_back(scene::perp(line.tangent(t, 0.5 * l_max)));
-    }
-    std::vector<bool> ok(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i)
-      ok[i] = line.curvature(s[i], l_max) * half_width <= kMaxWidthCurvature &&
-              column_fits(strip, i, region, obstacles, margin);
-    std::vector<bool> joined(s.size(), false);
-    for (std::size_t i = 0; i + 1 < s.size(); ++i)
-      joined[i] = quads_sound(strip, i) && sides_fit(strip, i, obstacles, margin);
-    const auto [a, b] = longest_fit(ok, joined);
-    Candidate c;
-    if (b - a < kMinStations) return c;
-    c.strip.rows = strip.rows;
-    for (std::size_t i = a; i < b; ++i) {
-      c.strip.centre.push_back(strip.centre[i]);
-      c.strip.normal.push_back(strip.normal[i]);
-      if (i + 1 < b) c.strip.along.push_back(s[i + 1] - s[i]);
-    }
-    c.from = s[a];
-    c.to = s[b - 1];
-    c.at_start = a == 0;
-    c.at_end = b == s.size();
-    return c;
-  };
   // A strip's growth rows reach out to its longest cell, so on a coarse
   // grid of a small domain they cross the body or the domain's edge and
   // few columns fit (or none: a coarse grid without its strip can then have
@@ -367,11 +370,11 @@ BandLayout layout_strips(const std::vector<ShockRun>& runs, const FluidRegion& r
   // each kept only if it covers kRetryGain times more.
   const auto lay = [&](const ShockRun& run) {
     const Polyline line(run);
-    Candidate best = fit(line, rule);
+    Candidate best = fit_strip(line, rule, region, obstacles, margin);
     for (StripRule r = rule; best.covered() < kFullCover * line.length();) {
       r.max_aspect *= kAspectRetry;
       if (r.max_aspect < kMinStripAspect) break;
-      Candidate c = fit(line, r);
+      Candidate c = fit_strip(line, r, region, obstacles, margin);
       if (c.covered() > kRetryGain * best.covered()) best = std::move(c);
     }
     if (best.strip.stations() == 0) {

@@ -349,6 +349,24 @@ PlaneMesh mesh_plan(const Plan& plan, const FluidRegion& region, const SizeField
   return mesh_with_gmsh_in_child(region, h, m.band.strips, job, scratch);
 }
 
+// mesh_plan; a strip layout gmsh rejects should not cost the grid: the band
+// is then meshed isotropically (the grid the scene had before strips), the
+// plan loses its strips for later attempts and `m` records why.
+PlaneMesh mesh_or_drop_strips(Plan& plan, const FluidRegion& region, const SizeField& field,
+                              Meshed& m, const GmshJob& job, const fs::path& stage,
+                              double calibration) {
+  try {
+    return mesh_plan(plan, region, field, m, job, stage);
+  } catch (const scene::RunError& e) {
+    if (!plan.strips() || scene::interrupted()) throw;
+    m.strips_dropped = e.what();
+    plan.anisotropy = 1.0;
+    m.band = {};
+    m.estimate = plan.cells(m.sizing, region, calibration);
+    return mesh_plan(plan, region, field, m, job, stage);
+  }
+}
+
 Meshed mesh_to_target(const CheckedPlan& checked, const FluidRegion& region, GmshJob& job,
                       const fs::path& stage, const std::string& where, const std::string& out_dir) {
   Plan plan = checked.plan;  // loses its strips if gmsh cannot mesh round them
@@ -374,18 +392,7 @@ Meshed mesh_to_target(const CheckedPlan& checked, const FluidRegion& region, Gms
     stop_if_interrupted("before meshing", out_dir);
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu_before = scene::children_cpu_seconds();
-    try {
-      m.mesh = mesh_plan(plan, region, field, m, job, stage);
-    } catch (const scene::RunError& e) {
-      // A strip layout gmsh rejects should not cost the grid: the band
-      // meshed isotropically is the grid the scene had before strips.
-      if (!plan.strips() || scene::interrupted()) throw;
-      m.strips_dropped = e.what();
-      plan.anisotropy = 1.0;
-      m.band = {};
-      m.estimate = plan.cells(m.sizing, region, calibration);
-      m.mesh = mesh_plan(plan, region, field, m, job, stage);
-    }
+    m.mesh = mesh_or_drop_strips(plan, region, field, m, job, stage, calibration);
     m.gmsh_seconds = seconds_since(t0);
     // The child's CPU time: what gmsh itself cost, whatever the load; every
     // attempt at a target cell count costs.

@@ -231,7 +231,8 @@ struct AxisParabola {
   std::vector<scene::Vec2> points, normals;  // points with y from the nose's height
   std::vector<double> sigma;
   double x0 = kNaN, c = kNaN;
-  bool valid = false;  // a vertex inside the lattice, not downstream of the nose
+  bool fitted = false;  // enough points for a parabola
+  bool valid = false;   // a vertex inside the lattice, not downstream of the nose
 };
 
 AxisParabola fit_near_axis(const ShockResult& r, const scene::BodyGeometry& g,
@@ -246,6 +247,7 @@ AxisParabola fit_near_axis(const ShockResult& r, const scene::BodyGeometry& g,
     }
   if (a.points.size() >= static_cast<std::size_t>(kMinParabolaPoints))
     std::tie(a.x0, a.c) = fit_axis_parabola(a.points);
+  a.fitted = std::isfinite(a.x0);
   // A vertex outside the lattice (a nearly flat, scattered set of points)
   // is no vertex: fall back to the stagnation station.
   a.valid = std::isfinite(a.x0) && a.x0 >= lat.x0 && a.x0 <= g.nose.x;
@@ -262,9 +264,17 @@ bool is_detached(const ShockResult& r, const AxisParabola& a, const scene::BodyG
   const double vertex_tol = std::max(kVertexAgreeCi * r.stagnation.ci, kVertexAgreeCells * cell);
   const bool stagnation_off = r.stagnation.accepted && r.stagnation.distance > attached_limit;
   const bool parabola_off = a.valid && std::isfinite(a.x0) && g.nose.x - a.x0 > attached_limit;
-  return blunt
-             ? (parabola_off || stagnation_off)
-             : stagnation_off && (!a.valid || std::abs(a.x0 - r.stagnation.shock.x) <= vertex_tol);
+  if (blunt) return parabola_off || stagnation_off;
+  if (!stagnation_off) return false;
+  if (a.valid) return std::abs(a.x0 - r.stagnation.shock.x) <= vertex_tol;
+  if (!a.fitted) return true;  // too few points to check: the stagnation line decides
+  // A parabola with no vertex ahead of a sharp nose (the two sides of an
+  // attached shock meeting at the apex fit one with its vertex behind it):
+  // a bow shock needs points of its own upstream of the nose; without them
+  // the stagnation line's jump is a fluctuation (disks thrown back off the
+  // apex), not a shock.
+  return std::any_of(a.points.begin(), a.points.end(),
+                     [&](scene::Vec2 q) { return g.nose.x - q.x > attached_limit; });
 }
 
 void set_detached(ShockResult& r, const AxisParabola& a, const scene::BodyGeometry& g,

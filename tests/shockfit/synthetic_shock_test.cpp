@@ -116,6 +116,35 @@ TEST(ObliqueShock, ExactInviscidSolutionOnLattice) {
   }
 }
 
+TEST(ObliqueShock, AJumpOnTheStagnationLineAloneLeavesTheShockAttached) {
+  // Mach 4.5, 12 deg: the exact attached shock, and a clump of denser gas
+  // on the axis 0.14-0.3 body lengths ahead of the apex (a granular run can
+  // throw disks back off the apex), which the stagnation line sees as a
+  // jump. The shock points all meet at the apex, none ahead of it: the
+  // shock stays attached, at its angle.
+  const double mach = 4.5, theta = 12.0 * kDeg, h = 0.005;
+  const double beta = *scene::oblique_shock_beta(mach, theta, 1.4);
+  const double r2 = scene::oblique_density_ratio(mach, beta, 1.4);
+  const double v2 = scene::oblique_downstream_mach(mach, beta, theta, 1.4) * std::sin(theta);
+  const scene::Scene s = wedge_scene(mach, 12.0);
+  scene::Lattice lat = shockfit_test::domain_lattice(s, h);
+  auto clump = [&](double x, double y) { return x > -0.3 && x < -0.14 && std::abs(y) < 3 * h; };
+  shockfit_test::fill(
+      lat, "volume_fraction",
+      [&](double x, double y) {
+        return clump(x, y) || above_shock(x, y, beta) <= 0 ? 0.1 * r2 : 0.1;
+      },
+      0.0, 1);
+  shockfit_test::fill(
+      lat, "v", [&](double x, double y) { return above_shock(x, y, beta) > 0 ? 0.0 : v2; }, 0.0, 2);
+  const shockfit::ShockResult r = shockfit::locate_shock(s, lat);
+  ASSERT_TRUE(r.stagnation.accepted) << "the clump must be seen on the stagnation line";
+  EXPECT_GT(r.stagnation.distance, 0.1);
+  ASSERT_EQ(r.shock, scene::ShockKind::attached);
+  constexpr double kExactTolDeg = 0.1;
+  EXPECT_NEAR(r.shock_angle_deg, beta / kDeg, kExactTolDeg);
+}
+
 TEST(BowShock, BilligStandoff) {
   // Billig's bow shock ahead of the Mach 4 disc, tanh of width one cell,
   // noise 5% of the jump: standoff within 2%, shock detached.

@@ -8,6 +8,7 @@
 #include "json_fields.hpp"
 #include "scene/body.hpp"
 #include "scene/units.hpp"
+#include "shockfit/group_interval.hpp"
 
 namespace pipeline {
 
@@ -42,9 +43,10 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
   std::snprintf(mesh_source, sizeof mesh_source, "mesh: %g h_min of the finest clustered grid",
                 kTargetFineCells);
   goal.target_source = s.granular.target_from_mesh ? mesh_source : "granular.target_half_width";
-  goal.measure = [s](const scene::Lattice& fields) {
+  goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
     granular::PrecisionMeasure m;
-    const shockfit::ShockResult r = shockfit::locate_shock(s, fields);
+    shockfit::ShockResult r = shockfit::locate_shock(s, fields);
+    shockfit::apply_group_interval(s, groups, r);
     m.half_width = shock_position_half_width(s, r);
     m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
                  : r.shock == scene::ShockKind::detached ? "standoff"
@@ -53,7 +55,8 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
                  {"shock_angle_deg", json_number(r.shock_angle_deg)},
                  {"shock_angle_ci_deg", json_number(r.shock_angle_ci_deg)},
                  {"standoff", json_number(r.standoff)},
-                 {"standoff_ci", json_number(r.standoff_ci)}};
+                 {"standoff_ci", json_number(r.standoff_ci)},
+                 {"interval_method", r.interval_method}};
     return m;
   };
   return goal;

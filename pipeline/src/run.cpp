@@ -6,11 +6,11 @@
 #include <filesystem>
 
 #include "granular/flow_run.hpp"
+#include "json_fields.hpp"
 #include "pipeline/calibration.hpp"
 #include "pipeline/compare.hpp"
 #include "pipeline/grid_convergence.hpp"
 #include "pipeline/grid_runs.hpp"
-#include "json_fields.hpp"
 #include "pipeline/precision_goal.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
@@ -24,10 +24,12 @@
 #include "scene/dir_lock.hpp"
 #include "scene/errors.hpp"
 #include "scene/gasdynamics.hpp"
+#include "scene/group_fields.hpp"
 #include "scene/io.hpp"
 #include "scene/lattice.hpp"
 #include "scene/progress.hpp"
 #include "scene/units.hpp"
+#include "shockfit/group_interval.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
@@ -209,12 +211,18 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
       scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
       scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")};
   if (goal.active()) parts.push_back(nlohmann::json(goal.target).dump());
+  // Stages cached before the averaging groups were written lack them.
+  parts.push_back("groups 1");
   const std::string fp_g = fingerprint(parts);
   nlohmann::json gsum;
   scene::Lattice fields;
+  std::vector<scene::Lattice> groups;
   if (!force && cache.fresh("granular", fp_g)) {
     gsum = cache.result("granular");
     fields = scene::read_vti(cache.dir("granular") + "/fields.vti");
+    const std::string gpath = cache.dir("granular") + "/groups.vti";
+    if (std::filesystem::is_regular_file(gpath))
+      groups = scene::unpack_groups(scene::read_vti(gpath), gpath);
   } else {
     cache.invalidate("granular");
     granular::RunOptions go;
@@ -228,6 +236,7 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
     gsum = r.summary;
     gsum["stage_cpu_seconds"] = cpu.seconds();
     fields = std::move(r.fields);
+    groups = std::move(r.groups);
     cache.mark_done("granular", fp_g, gsum);
   }
   const std::string fp_s = fingerprint({fp_g, scene::section_yaml(s, "shockfit")});
@@ -237,7 +246,8 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
   } else {
     cache.invalidate("shockfit");
     const scene::CpuStopwatch cpu;
-    const auto r = shockfit::locate_shock(s, fields);
+    auto r = shockfit::locate_shock(s, fields);
+    shockfit::apply_group_interval(s, groups, r);
     shockfit::write_outputs(s, fields, r, cache.dir("shockfit"));
     ssum = r.summary();
     const double position_half_width = shock_position_half_width(s, r);

@@ -178,6 +178,9 @@ nlohmann::json ShockResult::summary() const {
   j["shock_vertex_x"] = num(vertex_x);
   j["shock_curvature_radius"] = num(curvature_radius);
   j["field_candidates"] = candidates;
+  j["interval_method"] = interval_method;
+  j["interval_groups"] =
+      interval_groups > 0 ? nlohmann::json(interval_groups) : nlohmann::json(nullptr);
   return j;
 }
 
@@ -414,6 +417,60 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
 }
 
 }  // namespace
+
+double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const ShockResult& like) {
+  require_body(s);
+  if (like.shock != ShockKind::attached && like.shock != ShockKind::detached) return kNaN;
+  const scene::BodyGeometry g = scene::make_body(*s.body);
+  const scene::Domain d = scene::scene_domain(s);
+  const std::size_t plus = like.field.find('+');
+  const std::string dens = plus == std::string::npos ? like.field : like.field.substr(0, plus);
+  const std::string vel = plus == std::string::npos ? "" : like.field.substr(plus + 1);
+  auto refit = [&](const StationFit& f) {
+    StationFit a = fit_station(lat, dens, d, s.shockfit, f.station, f.surface, f.normal);
+    if (vel.empty() || f.station < 0) return a;
+    const StationFit b = fit_station(lat, vel, d, s.shockfit, f.station, f.surface, f.normal);
+    a.distance = 0.5 * (a.distance + b.distance);  // NaN unless both fields place a jump
+    a.shock = a.surface + a.distance * a.normal;
+    a.accepted = a.accepted && b.accepted;
+    return a;
+  };
+  // The stations `like` kept, found again on this lattice: the same points
+  // fitted the same way, so that the value moves with the data alone and not
+  // with which stations pass the acceptance and outlier tests.
+  std::vector<scene::Vec2> pts;
+  const double cell = std::min(lat.dx, lat.dy);
+  const double reach = (blunt_nose(g) ? kBluntParabolaReach : kParabolaReach) * g.length;
+  for (const StationFit& f : like.stations) {
+    if (!f.accepted || is_nose_station(f, g, cell)) continue;
+    if (like.shock == ShockKind::detached && std::abs(f.shock.y - g.nose.y) > reach) continue;
+    const StationFit q = refit(f);
+    // The full fit found a jump here; on one group's noisier profile the
+    // fit's position is wanted even where the jump does not pass the noise
+    // test (outliers are dropped below).
+    if (!std::isfinite(q.distance)) continue;
+    pts.push_back(like.shock == ShockKind::detached ? q.shock - scene::Vec2{0.0, g.nose.y}
+                                                    : q.shock);
+  }
+  if (like.shock == ShockKind::attached) {
+    // The same outlier test as the full fit: a group's noisier profile can
+    // put a station's jump far off the line.
+    std::vector<scene::Vec2> good;
+    for (const std::size_t k : inliers(pts, kOutlierSigmas, kOutlierFloorCells * cell))
+      good.push_back(pts[k]);
+    return good.size() >= static_cast<std::size_t>(kMinAccepted)
+               ? fit_orthogonal_line(good).angle_deg
+               : kNaN;
+  }
+  // Detached: the near-axis parabola's vertex through the same stations;
+  // without one, the stagnation line.
+  if (std::isfinite(like.vertex_x) && pts.size() >= static_cast<std::size_t>(kMinParabolaPoints)) {
+    const double x0 = fit_axis_parabola(pts).first;
+    return std::isfinite(x0) ? (g.nose.x - x0) / g.length : kNaN;
+  }
+  const StationFit st = refit(like.stagnation);
+  return st.distance / g.length;
+}
 
 ShockResult locate_shock(const scene::Scene& s, const scene::Lattice& lat) {
   const std::string want = s.shockfit.field;

@@ -30,7 +30,7 @@ granular::PrecisionGoal counting_goal(double target, std::shared_ptr<int> calls)
   granular::PrecisionGoal g;
   g.target = target;
   g.target_source = "test";
-  g.measure = [calls](const scene::Lattice&) {
+  g.measure = [calls](const scene::Lattice&, const std::vector<scene::Lattice>&) {
     granular::PrecisionMeasure m;
     m.half_width = 1.0 / ++*calls;
     m.quantity = "count";
@@ -82,7 +82,7 @@ TEST(FlowPrecision, AChangeOfQuantityRestartsTheCount) {
   auto calls = std::make_shared<int>(0);
   granular::PrecisionGoal g;
   g.target = 1.0;
-  g.measure = [calls](const scene::Lattice&) {
+  g.measure = [calls](const scene::Lattice&, const std::vector<scene::Lattice>&) {
     granular::PrecisionMeasure m;
     m.half_width = 0.1;
     m.quantity = ++*calls % 2 ? "standoff" : "shock_angle";
@@ -101,7 +101,7 @@ TEST(FlowPrecision, StopsWhenTheIntervalNoLongerShrinks) {
   s.granular.max_averaging = 8.0;
   granular::PrecisionGoal g;
   g.target = 1e-9;
-  g.measure = [](const scene::Lattice&) {
+  g.measure = [](const scene::Lattice&, const std::vector<scene::Lattice>&) {
     granular::PrecisionMeasure m;
     m.half_width = 0.05;
     m.quantity = "shock_angle";

@@ -74,6 +74,24 @@ TEST(FlowRun, SmallWedgeWritesFieldsAndSummary) {
   EXPECT_GT(flowtest::max_of(lat, "volume_fraction"), kMinCompression * 0.05);
   // Two replicas: the per-cell spread exists in the free stream.
   EXPECT_TRUE(std::isfinite(flowtest::upstream_mean(lat, "volume_fraction_se", -0.05)));
+  // The averaging groups (the shock's interval): four per replica, written
+  // beside the fields; each group's disks add up to the pooled count and its
+  // volume fraction is the pooled one scaled by its share of the snapshots.
+  ASSERT_EQ(r.groups.size(), 8u);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/groups.vti"));
+  const std::size_t up = lat.index(2, lat.ny / 2);
+  double nu_weighted = 0.0, samples = 0.0;
+  for (const scene::Lattice& g : r.groups) {
+    EXPECT_EQ(g.field("samples")[up],
+              lat.field("samples")[up]);  // the pooled count, for the sample gate
+    nu_weighted += g.field("volume_fraction")[up];
+    samples += 1.0;
+  }
+  // Equal slices: the groups' mean volume fraction is the pooled one within
+  // the share of snapshots their slices differ by (one slice in eight).
+  constexpr double kSliceShareTol = 0.15;
+  EXPECT_NEAR(nu_weighted / samples, lat.field("volume_fraction")[up],
+              kSliceShareTol * lat.field("volume_fraction")[up]);
   // The apex region is body: marked, NaN.
   const std::size_t c = lat.index(lat.nx - 1, 0);
   EXPECT_EQ(lat.field("inside_body")[c], 1.0);

@@ -1,6 +1,6 @@
 #pragma once
 // Time-averaged fields on a uniform lattice over the scene's domain.
-// Particles are binned by centre; each block (a replica, or a batch of one
+// Particles are binned by centre; each block (an averaging group of one
 // replica) keeps plain sums so blocks add exactly across threads and MPI
 // ranks, and the spread between blocks gives the per-cell standard error.
 #include <cstddef>
@@ -40,6 +40,9 @@ class FieldSums {
   void operator+=(const FieldSums& o) {
     for (std::size_t k = 0; k < data_.size(); ++k) data_[k] += o.data_[k];
   }
+  void operator-=(const FieldSums& o) {
+    for (std::size_t k = 0; k < data_.size(); ++k) data_[k] -= o.data_[k];
+  }
 
  private:
   std::vector<double> data_;
@@ -66,5 +69,12 @@ class Binner {
 // pressure in T/d^2 (Henderson's Z times n T).
 scene::Lattice make_fields(const FlowSetup& f, const scene::Lattice& geometry,
                            const std::vector<FieldSums>& blocks);
+
+// The fields a shock locator reads (volume_fraction, v, samples, and the
+// body mask) of each averaging group on its own, from the pooled `fields`
+// (make_fields of the same groups) and the groups' sums. Fewer than two
+// groups: none.
+std::vector<scene::Lattice> make_group_fields(const scene::Lattice& fields,
+                                              const std::vector<FieldSums>& groups);
 
 }  // namespace granular

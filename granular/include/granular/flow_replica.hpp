@@ -18,14 +18,18 @@ namespace granular {
 
 struct ReplicaPlan {
   std::uint64_t seed = 1;
-  int batches = 1;               // blocks this replica's averaging is split into
+  // Averaging groups (the shock's interval): consecutive slices of the averaging (counted from the
+  // end of the warm-up, whatever the chunks) dealt in turn into this many
+  // groups, so that a group's sums do not depend on how the run was chunked.
+  int groups = 1;
+  double group_slice_flow_throughs = 0.25;
   std::optional<double> warmup;  // flow-through times; unset: detect
   double averaging = 3.0;        // flow-through times
   std::string snapshot_path;     // final particles as CSV when not empty
 };
 
 struct ReplicaOutcome {
-  std::vector<FieldSums> blocks;
+  std::vector<FieldSums> groups;  // plan.groups averaging groups (empty before averaging)
   Stats stats;                   // engine statistics at the end
   double energy_initial = 0;     // kinetic energy in the domain at t = 0
   double particles_initial = 0;
@@ -46,11 +50,10 @@ class FlowReplica {
   FlowReplica(const FlowSetup& f, const scene::Lattice& geometry, const ReplicaPlan& plan);
   // Warm-up (plan.warmup, or until steady); once only, before average().
   void warm_up(std::atomic<double>* progress);
-  // `snapshots` more averaging snapshots, one chunk: its snapshots are split
-  // into plan.batches consecutive blocks.
+  // `snapshots` more averaging snapshots (one chunk), each binned into the
+  // group of its slice.
   void average(long snapshots, std::atomic<double>* progress);
-  // Everything so far, the chunks' blocks regrouped into plan.batches
-  // consecutive blocks (one chunk: exactly its blocks).
+  // Everything so far.
   ReplicaOutcome outcome() const;
   // Final particles to plan.snapshot_path, when set.
   void write_snapshot() const;
@@ -65,7 +68,8 @@ class FlowReplica {
   long taken_ = 0;
   double count_sum_ = 0, energy_initial_ = 0, particles_initial_ = 0, warmup_time_ = 0;
   bool steady_detected_ = false, warmed_ = false;
-  std::vector<FieldSums> blocks_;  // plan.batches per chunk, in order
+  std::vector<FieldSums> groups_;  // plan.groups, filled slice by slice
+  long slice_snapshots_ = 1;
 
   void advance(double t, std::atomic<double>* progress);
 };

@@ -17,6 +17,10 @@ namespace granular {
 
 struct FlowResult {
   scene::Lattice fields;
+  // The fields of each averaging group alone, for the shock's interval
+  // (about 8 groups of interleaved half flow-through slices over all
+  // replicas; make_group_fields; empty with fewer than two groups).
+  std::vector<scene::Lattice> groups;
   nlohmann::json summary;
 };
 
@@ -46,13 +50,16 @@ struct PrecisionMeasure {
 struct PrecisionGoal {
   double target = std::numeric_limits<double>::quiet_NaN();  // body lengths
   std::string target_source;  // how the target was set, for the summary
-  std::function<PrecisionMeasure(const scene::Lattice& fields)> measure;
+  std::function<PrecisionMeasure(const scene::Lattice& fields,
+                                 const std::vector<scene::Lattice>& groups)>
+      measure;
   bool active() const { return static_cast<bool>(measure); }
 };
 
 // Runs granular.replicas replicas (seeds seed, seed+1, ...), o.np at a time
 // in threads on each member of `group`; replica i runs on rank i % size.
-// Rank 0 writes o.out_dir/fields.vti and summary.json atomically (plus
+// Rank 0 writes o.out_dir/fields.vti, groups.vti (the averaging groups'
+// fields) and summary.json atomically (plus
 // particle snapshots when granular.snapshots); every rank returns the result.
 // On Ctrl-C the fields averaged so far are written and summary.interrupted
 // is true. InputError for scenes it cannot model, RunError for failed runs.
@@ -61,12 +68,11 @@ struct PrecisionGoal {
 // (goal active and met by two consecutive checks with the same quantity;
 // checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
 // "plateau" (the interval stopped shrinking with averaging time:
-// granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at the
-// last chunk's rate) and "averaging" (granular.max_averaging with a goal,
-// else granular.averaging). Every
-// replica keeps its simulation between chunks and snapshot times count from
-// the end of its warm-up, so a run stopped after N flow-through times has
-// the fields of an uninterrupted run with averaging: N (replicas >= 2).
+// granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at
+// the last chunk's rate) and "averaging" (granular.max_averaging with a goal, else
+// granular.averaging). Every replica keeps its simulation between chunks and snapshot times count
+// from the end of its warm-up, so a run stopped after N flow-through times has the fields of an
+// uninterrupted run with averaging: N (replicas >= 2).
 FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o,
                           const ReplicaGroup& group = {}, const PrecisionGoal& goal = {});
 

@@ -70,7 +70,9 @@ FlowReplica::FlowReplica(const FlowSetup& f, const scene::Lattice& geometry,
       plan_(plan),
       sim_(seeded(f, plan.seed)),
       binner_(f, geometry),
-      dt_sample_(snapshot_interval(f, geometry)) {
+      dt_sample_(snapshot_interval(f, geometry)),
+      slice_snapshots_(std::max<long>(
+          1, std::lround(plan.group_slice_flow_throughs * f.flow_through_time / dt_sample_))) {
   const Stats s0 = sim_.stats();
   energy_initial_ = s0.kinetic_energy;
   particles_initial_ = static_cast<double>(s0.particles);
@@ -122,22 +124,22 @@ void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
   if (snapshots <= 0 || scene::interrupted()) return;
   const std::size_t ncell =
       static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
-  // One batch (two or more replicas): one running sum, so that chunks add
-  // snapshots in the order, and with the round-off, of one long run.
-  // Several: each chunk's own batches, regrouped by outcome().
-  const auto batches = static_cast<std::size_t>(plan_.batches);
-  if (batches > 1 || blocks_.empty()) blocks_.resize(blocks_.size() + batches, FieldSums(ncell));
-  const std::size_t first = blocks_.size() - batches;
+  // Each snapshot goes to the group of its slice of the averaging, counted
+  // from the end of the warm-up: the groups, and so the fields, are those
+  // of one long run however the averaging is chunked.
+  if (groups_.empty())
+    groups_.assign(static_cast<std::size_t>(std::max(1, plan_.groups)), FieldSums(ncell));
   for (long k = 0; k < snapshots && !scene::interrupted(); ++k) {
     // Snapshot times count from the end of the warm-up over all chunks, so
     // chunked averaging samples exactly the times of one long run.
     advance(t0_ + static_cast<double>(taken_ + 1) * dt_sample_, progress);
-    FieldSums& block = blocks_[first + static_cast<std::size_t>(k * plan_.batches / snapshots)];
+    FieldSums& group =
+        groups_[static_cast<std::size_t>(taken_ / slice_snapshots_) % groups_.size()];
     sim_.for_each_particle([&](scene::Vec2 r, scene::Vec2 v) {
       const std::size_t c = binner_.cell_of(r);
-      if (c != Binner::npos) block.add(c, v);
+      if (c != Binner::npos) group.add(c, v);
     });
-    block.end_snapshot();
+    group.end_snapshot();
     count_sum_ += static_cast<double>(sim_.stats().particles);
     ++taken_;
   }
@@ -145,12 +147,7 @@ void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
 
 ReplicaOutcome FlowReplica::outcome() const {
   ReplicaOutcome out;
-  const std::size_t ncell =
-      static_cast<std::size_t>(geometry_->nx) * static_cast<std::size_t>(geometry_->ny);
-  const auto batches = static_cast<std::size_t>(plan_.batches);
-  out.blocks.assign(batches, FieldSums(ncell));
-  for (std::size_t j = 0; j < blocks_.size(); ++j)
-    out.blocks[j * batches / blocks_.size()] += blocks_[j];
+  out.groups = groups_;
   out.stats = sim_.stats();
   out.energy_initial = energy_initial_;
   out.particles_initial = particles_initial_;

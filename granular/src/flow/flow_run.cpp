@@ -17,6 +17,7 @@
 #include "scene/cli.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
+#include "scene/group_fields.hpp"
 #include "scene/io.hpp"
 #include "scene/progress.hpp"
 
@@ -24,10 +25,17 @@ namespace granular {
 
 namespace {
 
-// With a single replica the spread between replicas is unknown; the
-// averaging is then cut into this many consecutive batches instead (batch
-// means, slightly optimistic because neighbouring batches correlate).
-constexpr int kSingleReplicaBatches = 4;
+// The shock's interval comes from the spread between averaging groups
+// (shockfit/group_interval.hpp): each replica's averaging is dealt, slice by
+// slice, into groups, about this many in all (Student's t with groups - 1
+// degrees of freedom). Slices of a quarter flow-through time: short enough
+// that every group samples the whole averaging (a slow drift of the shock
+// while it settles is then common to all groups, not spread between them),
+// long enough that the shock position hardly correlates from one slice to
+// the next (docs/shockfit.md, "Interval coverage": half-widths 0.1-1.1x
+// too wide at 0.5, 0.6x too narrow at 0.0625).
+constexpr int kIntervalGroups = 8;
+constexpr double kGroupSliceFlowThroughs = 0.25;
 // Warm-up assumed for the progress estimate when it is detected.
 constexpr double kWarmupGuessFlowThroughs = 2.0;
 constexpr auto kProgressPoll = std::chrono::milliseconds(50);
@@ -59,25 +67,25 @@ std::vector<double> pack(const ReplicaOutcome& r) {
   v[warmup_time] = r.warmup_time;
   v[steady] = r.steady_detected ? 1 : 0;
   v[interrupted_flag] = r.interrupted ? 1 : 0;
-  for (const FieldSums& b : r.blocks) v.insert(v.end(), b.raw().begin(), b.raw().end());
+  for (const FieldSums& g : r.groups) v.insert(v.end(), g.raw().begin(), g.raw().end());
   return v;
 }
 
 // Where each replica's numbers sit in the vector summed over ranks: kSlots
-// scalars, then `batches` blocks of field sums.
+// scalars, then `groups` blocks of field sums.
 struct Layout {
   int replicas = 1;
-  int batches = 1;
+  int groups = 1;  // averaging groups per replica
   std::size_t ncell = 0, block_size = 0, stride = 0;
 };
 
 Layout layout_for(const scene::GranularParams& p, const scene::Lattice& geometry) {
   Layout l;
   l.replicas = p.replicas;
-  l.batches = l.replicas == 1 ? kSingleReplicaBatches : 1;
   l.ncell = static_cast<std::size_t>(geometry.nx) * static_cast<std::size_t>(geometry.ny);
   l.block_size = FieldSums(l.ncell).raw().size();
-  l.stride = kSlots + static_cast<std::size_t>(l.batches) * l.block_size;
+  l.groups = std::max(1, (kIntervalGroups + l.replicas - 1) / l.replicas);
+  l.stride = kSlots + static_cast<std::size_t>(l.groups) * l.block_size;
   return l;
 }
 
@@ -109,7 +117,8 @@ class ReplicaPool {
     for (const int i : mine_) {
       ReplicaPlan plan;
       plan.seed = p.seed + static_cast<std::uint64_t>(i);
-      plan.batches = l.batches;
+      plan.groups = l.groups;
+      plan.group_slice_flow_throughs = kGroupSliceFlowThroughs;
       plan.warmup = p.warmup;
       if (p.snapshots && !o.out_dir.empty())
         plan.snapshot_path = o.out_dir + "/snapshots/replica_" + std::to_string(i) + ".csv";
@@ -129,7 +138,8 @@ class ReplicaPool {
   std::vector<double> gather() const {
     std::vector<double> all(l_.stride * static_cast<std::size_t>(l_.replicas), 0.0);
     for (std::size_t k = 0; k < mine_.size(); ++k) {
-      const std::vector<double> v = pack(replicas_[k]->outcome());
+      std::vector<double> v = pack(replicas_[k]->outcome());
+      v.resize(l_.stride, 0.0);  // no groups yet before the averaging
       std::copy(v.begin(), v.end(),
                 all.begin() +
                     static_cast<std::ptrdiff_t>(l_.stride * static_cast<std::size_t>(mine_[k])));
@@ -187,7 +197,7 @@ class ReplicaPool {
 // The replicas' outcomes combined: counters summed, energies and particle
 // counts averaged, field blocks that hold snapshots kept for averaging.
 struct Combined {
-  std::vector<FieldSums> blocks;
+  std::vector<FieldSums> blocks;  // the averaging groups that hold snapshots
   nlohmann::json per_replica = nlohmann::json::array();
   double coll = 0, disk = 0, wall = 0, rec = 0, ins = 0, rem = 0, overlap = 0, e0 = 0, e1 = 0,
          n0 = 0, nmean = 0, warm = 0, sim_time = 0;
@@ -214,9 +224,9 @@ Combined combine(const std::vector<double>& all, const Layout& l, std::uint64_t 
     c.sim_time = std::max(c.sim_time, v[time_final]);
     c.steady_all = c.steady_all && v[steady] > 0.5;
     c.interrupted = c.interrupted || v[interrupted_flag] > 0.5 || v[present] < 0.5;
-    for (int b = 0; b < l.batches; ++b) {
+    for (int g = 0; g < l.groups; ++g) {
       FieldSums fs(l.ncell);
-      const double* src = v + kSlots + static_cast<std::size_t>(b) * l.block_size;
+      const double* src = v + kSlots + static_cast<std::size_t>(g) * l.block_size;
       std::copy(src, src + l.block_size, fs.raw().begin());
       if (fs.snapshots() > 0) c.blocks.push_back(std::move(fs));
     }
@@ -291,7 +301,10 @@ FlowResult fields_so_far(const ReplicaPool& pool, const FlowSetup& f,
                          Combined& c) {
   c = combine(pool.gather(), l, seed);
   FlowResult r;
-  if (!c.blocks.empty()) r.fields = make_fields(f, geometry, c.blocks);
+  if (!c.blocks.empty()) {
+    r.fields = make_fields(f, geometry, c.blocks);
+    r.groups = make_group_fields(r.fields, c.blocks);
+  }
   return r;
 }
 
@@ -346,7 +359,7 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       Combined c;
       const FlowResult r = fields_so_far(pool, f, geometry, l, p.seed, c);
       const PrecisionMeasure previous = out.last;
-      out.last = goal.measure(r.fields);
+      out.last = goal.measure(r.fields, r.groups);
       const double averaged = static_cast<double>(out.snapshots) * dt / tau;  // flow-through times
       out.checks.push_back(
           {{"flow_throughs", averaged},
@@ -435,6 +448,8 @@ FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const Repl
   r.summary["cpu_seconds"] = cpu.seconds();
   if (group.rank == 0 && !o.out_dir.empty()) {
     scene::write_vti(r.fields, o.out_dir + "/fields.vti");
+    if (!r.groups.empty())
+      scene::write_vti(scene::pack_groups(r.groups), o.out_dir + "/groups.vti");
     scene::write_json_atomic(o.out_dir + "/summary.json", r.summary);
   }
   return r;

@@ -39,6 +39,11 @@ struct ShockResult {
   StationFit stagnation;                // the fit along the stagnation line (from the nose, along -x)
   bool stagnation_valid = false;
   int plot_station = -1;                // station whose profile is plotted
+  // How the angle's / standoff's 95% interval was made: "bootstrap" over
+  // stations, or "groups": the spread of interval_groups averaging groups
+  // (group_interval.hpp).
+  std::string interval_method = "bootstrap";
+  int interval_groups = 0;
   nlohmann::json candidates = nlohmann::json::object();  // per field tried: shock, uncertainty
 
   int accepted_count() const;
@@ -55,6 +60,13 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& field
 // the stagnation line uses the density alone.
 ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& fields,
                                const std::string& density, const std::string& velocity);
+
+// The angle (attached, deg) or standoff (detached, body lengths) of `like`'s
+// shock found again on another lattice of the same scene (the fields of one
+// averaging group): the stations `like` kept, refitted with its field
+// definition, through its line or near-axis parabola. NaN where too few of
+// them find a jump.
+double relocate_value(const scene::Scene& s, const scene::Lattice& fields, const ShockResult& like);
 
 // DIR/shock.csv, DIR/summary.json, DIR/shock.png and DIR/profile.png (the
 // PNGs only when gnuplot runs; otherwise a warning on stderr).

@@ -1,0 +1,91 @@
+// The interval from the averaging groups' spread, on fields with known
+// shocks: each group's shock a known angle off the pooled one.
+#include "shockfit/group_interval.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene/gasdynamics.hpp"
+#include "scene/units.hpp"
+#include "shockfit/locate.hpp"
+#include "synthetic.hpp"
+
+namespace {
+
+using scene::kDeg;
+
+scene::Scene wedge_scene() {
+  return scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1.0}\nfreestream: {mach: 3.0}\n");
+}
+
+// A granular-like lattice (volume fraction and v) with a tanh shock at
+// angle beta through the apex, a few cells wide.
+scene::Lattice shock_at(const scene::Scene& s, double beta) {
+  const double h = 0.005, width = 2 * h;
+  scene::Lattice lat = shockfit_test::domain_lattice(s, h);
+  auto behind = [&](double x, double y) {
+    return 0.5 * (1.0 - std::tanh((y * std::cos(beta) - x * std::sin(beta)) / width));
+  };
+  shockfit_test::fill(
+      lat, "volume_fraction", [&](double x, double y) { return 0.1 * (1.0 + 2.0 * behind(x, y)); },
+      0.0, 1);
+  shockfit_test::fill(
+      lat, "v", [&](double x, double y) { return 0.5 * behind(x, y); }, 0.0, 2);
+  return lat;
+}
+
+}  // namespace
+
+TEST(GroupInterval, StudentQuantiles) {
+  EXPECT_NEAR(shockfit::student_t95(1), 12.706, 1e-3);
+  EXPECT_NEAR(shockfit::student_t95(7), 2.365, 1e-3);
+  EXPECT_NEAR(shockfit::student_t95(30), 2.042, 1e-3);
+  EXPECT_NEAR(shockfit::student_t95(60), 2.000, 2e-3);
+  EXPECT_NEAR(shockfit::student_t95(1000), 1.962, 2e-3);
+  EXPECT_TRUE(std::isinf(shockfit::student_t95(0)));
+}
+
+TEST(GroupInterval, HalfWidthIsStudentTimesTheGroupsStandardError) {
+  // Eight groups whose shocks stand +-0.4 and +-0.8 deg off the pooled
+  // angle: sd 0.676 deg (n - 1), standard error 0.239, half-width 2.365 x
+  // that = 0.565 deg. The locator resolves each group's angle to a few
+  // hundredths of a degree on this lattice, hence the tolerance.
+  const scene::Scene s = wedge_scene();
+  const double beta = *scene::oblique_shock_beta(3.0, 10.0 * kDeg, 1.4);
+  shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
+  ASSERT_EQ(r.shock, scene::ShockKind::attached);
+  EXPECT_EQ(r.interval_method, "bootstrap");
+  const double offsets[] = {0.4, -0.4, 0.8, -0.8, 0.4, -0.4, 0.8, -0.8};
+  std::vector<scene::Lattice> groups;
+  for (const double d : offsets) groups.push_back(shock_at(s, beta + d * kDeg));
+  shockfit::apply_group_interval(s, groups, r);
+  EXPECT_EQ(r.interval_method, "groups");
+  EXPECT_EQ(r.interval_groups, 8);
+  double ss = 0.0;
+  for (const double d : offsets) ss += d * d;
+  const double want = shockfit::student_t95(7) * std::sqrt(ss / 7.0 / 8.0);
+  constexpr double kRelTol = 0.1;
+  EXPECT_NEAR(r.shock_angle_ci_deg, want, kRelTol * want);
+  EXPECT_DOUBLE_EQ(r.shock_angle_hi_deg - r.shock_angle_lo_deg, 2.0 * r.shock_angle_ci_deg);
+  EXPECT_EQ(r.summary()["interval_method"], "groups");
+}
+
+TEST(GroupInterval, TooFewGroupsFindingTheShockKeepTheBootstrap) {
+  // Three groups with the shock and five blank ones (no jump anywhere):
+  // fewer than kMinIntervalGroups values, so the bootstrap interval stays.
+  const scene::Scene s = wedge_scene();
+  const double beta = *scene::oblique_shock_beta(3.0, 10.0 * kDeg, 1.4);
+  shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
+  const double bootstrap = r.shock_angle_ci_deg;
+  std::vector<scene::Lattice> groups(3, shock_at(s, beta));
+  scene::Lattice blank = shockfit_test::domain_lattice(s, 0.005);
+  blank.add("volume_fraction", std::nan(""));
+  blank.add("v", std::nan(""));
+  groups.insert(groups.end(), 5, blank);
+  shockfit::apply_group_interval(s, groups, r);
+  EXPECT_EQ(r.interval_method, "bootstrap");
+  EXPECT_EQ(r.interval_groups, 0);
+  EXPECT_DOUBLE_EQ(r.shock_angle_ci_deg, bootstrap);
+}

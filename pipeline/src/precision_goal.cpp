@@ -48,6 +48,16 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
     shockfit::ShockResult r = shockfit::locate_shock(s, fields);
     shockfit::apply_group_interval(s, groups, r);
     m.half_width = shock_position_half_width(s, r);
+    if (r.shock == scene::ShockKind::detached) {
+      m.value = r.standoff;
+      m.value_to_position = 1.0;
+    } else if (r.shock == scene::ShockKind::attached && std::isfinite(m.half_width) &&
+               r.shock_angle_ci_deg > 0) {
+      m.value = r.shock_angle_deg;
+      // The same lever as the half-width: reach x tan(ci), per degree.
+      m.value_to_position =
+          m.half_width / std::tan(r.shock_angle_ci_deg * scene::kDeg) * scene::kDeg;
+    }
     m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
                  : r.shock == scene::ShockKind::detached ? "standoff"
                                                          : "none";

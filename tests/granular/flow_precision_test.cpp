@@ -93,6 +93,30 @@ TEST(FlowPrecision, AChangeOfQuantityRestartsTheCount) {
   EXPECT_EQ(*calls, 3);
 }
 
+TEST(FlowPrecision, AShockStillMovingIsNotPrecise) {
+  // Every check meets the target, but the shock moves by twice the target
+  // between checks (a flow still settling): never "precision"; once it
+  // stands still (from the fourth check on), two checks in a row stop it.
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.max_averaging = 4.0;
+  auto calls = std::make_shared<int>(0);
+  granular::PrecisionGoal g;
+  g.target = 0.01;
+  g.measure = [calls](const scene::Lattice&, const std::vector<scene::Lattice>&) {
+    granular::PrecisionMeasure m;
+    m.half_width = 0.005;
+    m.quantity = "shock_angle";
+    m.value = std::min(++*calls, 3) * 0.02;  // body lengths per unit: 1
+    m.value_to_position = 1.0;
+    return m;
+  };
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "precision");
+  EXPECT_EQ(*calls, 4);
+  ASSERT_EQ(r.summary["precision"]["checks"].size(), 4u);
+  EXPECT_EQ(r.summary["precision"]["checks"][3]["value"], 0.06);
+}
+
 TEST(FlowPrecision, StopsWhenTheIntervalNoLongerShrinks) {
   // An interval that stays put: an impossible target is not averaged to
   // max_averaging; the run stops at the second check that doubled its time

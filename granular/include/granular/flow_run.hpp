@@ -42,6 +42,12 @@ struct PrecisionMeasure {
   // is found (the averaging then goes on).
   double half_width = std::numeric_limits<double>::quiet_NaN();
   std::string quantity;  // what it was derived from, e.g. "shock_angle", "standoff"
+  // The shock's value (an angle, a standoff) and the body lengths the shock
+  // moves per unit of it: two checks must also agree on where the shock is
+  // (NaN: not judged). An interval says how far another run would be; a
+  // shock still settling as the run averages is not placed by it.
+  double value = std::numeric_limits<double>::quiet_NaN();
+  double value_to_position = std::numeric_limits<double>::quiet_NaN();
   nlohmann::json details = nlohmann::json::object();  // recorded with the check
 };
 
@@ -65,7 +71,8 @@ struct PrecisionGoal {
 // is true. InputError for scenes it cannot model, RunError for failed runs.
 //
 // The averaging stops at the first of (summary.stopped_by): "precision"
-// (goal active and met by two consecutive checks with the same quantity;
+// (goal active and met by two consecutive checks with the same quantity,
+// between which the shock moved by no more than the target;
 // checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
 // "plateau" (the interval stopped shrinking with averaging time:
 // granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at

@@ -318,9 +318,16 @@ bool anyone(const ReplicaGroup& group, bool here) {
 // check alone stops on the first lucky dip, and a noisy early fit that
 // classifies an attached shock as a bow shock would be judged by the wrong
 // quantity.
+// And the shock must have stopped moving: an interval from the spread of
+// averaging groups describes another run's scatter, not a drift common to
+// all groups while the flow still settles (wedge M3/10: 23.8, 25.3, 26.2,
+// 26.4 deg at 1, 1.5, 2, 2.5 flow-through times, docs/granular_flow.md).
 bool met(const PrecisionGoal& goal, const PrecisionMeasure& previous, const PrecisionMeasure& now) {
-  return now.half_width <= goal.target && previous.half_width <= goal.target &&
-         previous.quantity == now.quantity;
+  if (!(now.half_width <= goal.target && previous.half_width <= goal.target &&
+        previous.quantity == now.quantity))
+    return false;
+  const double moved = std::abs(now.value - previous.value) * now.value_to_position;
+  return !std::isfinite(moved) || moved <= goal.target;
 }
 
 // Chunks of averaging until the goal is met, the budget would be overrun or
@@ -366,6 +373,8 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
            {"half_width", std::isfinite(out.last.half_width) ? nlohmann::json(out.last.half_width)
                                                              : nlohmann::json(nullptr)},
            {"quantity", out.last.quantity},
+           {"value", std::isfinite(out.last.value) ? nlohmann::json(out.last.value)
+                                                   : nlohmann::json(nullptr)},
            {"cpu_seconds", cpu.seconds()},
            {"details", out.last.details}});
       out.history.push_back({averaged, out.last.half_width, out.last.quantity});

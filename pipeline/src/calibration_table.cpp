@@ -365,6 +365,16 @@ MachRange training_mach_range(const BowShapeFit& f) {
   return r;
 }
 
+std::optional<MachRange> training_angle_range(const CalibrationTable& t) {
+  if (t.entries.empty()) return std::nullopt;
+  MachRange r{t.entries.front().angle_deg, t.entries.front().angle_deg};
+  for (const auto& c : t.entries) {
+    r.low = std::min(r.low, c.angle_deg);
+    r.high = std::max(r.high, c.angle_deg);
+  }
+  return r;
+}
+
 std::optional<MachRange> training_mach_range(const CalibrationTable& t) {
   if (t.entries.empty()) return std::nullopt;
   MachRange r{t.entries.front().mach, t.entries.front().mach};

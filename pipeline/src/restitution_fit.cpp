@@ -30,6 +30,10 @@ std::vector<double> basis(RestitutionModel m, double mach, double angle_deg) {
       return {1.0, std::log(mach)};
     case RestitutionModel::inverse_mach2_angle:
       return {1.0, 1.0 / (mach * mach), angle_deg};
+    case RestitutionModel::log_mach_angle:
+      return {1.0, std::log(mach), angle_deg};
+    case RestitutionModel::log_mach_inverse_angle:
+      return {1.0, std::log(mach), 1.0 / angle_deg};
   }
   return {};
 }
@@ -108,6 +112,10 @@ std::string model_key(RestitutionModel m) {
       return "log_mach";
     case RestitutionModel::inverse_mach2_angle:
       return "inverse_mach2_angle";
+    case RestitutionModel::log_mach_angle:
+      return "log_mach_angle";
+    case RestitutionModel::log_mach_inverse_angle:
+      return "log_mach_inverse_angle";
   }
   return "";
 }
@@ -122,6 +130,10 @@ std::string model_formula(RestitutionModel m) {
       return "e = c0 + c1*ln(M)";
     case RestitutionModel::inverse_mach2_angle:
       return "e = c0 + c1/M^2 + c2*theta_deg";
+    case RestitutionModel::log_mach_angle:
+      return "e = c0 + c1*ln(M) + c2*theta_deg";
+    case RestitutionModel::log_mach_inverse_angle:
+      return "e = c0 + c1*ln(M) + c2/theta_deg";
   }
   return "";
 }
@@ -140,13 +152,16 @@ std::size_t parameter_count(RestitutionModel m) {
     case RestitutionModel::log_mach:
       return 2;
     case RestitutionModel::inverse_mach2_angle:
+    case RestitutionModel::log_mach_angle:
+    case RestitutionModel::log_mach_inverse_angle:
       return 3;
   }
   return 0;
 }
 
 bool uses_angle(RestitutionModel m) {
-  return m == RestitutionModel::inverse_mach2_angle;
+  return m == RestitutionModel::inverse_mach2_angle || m == RestitutionModel::log_mach_angle ||
+         m == RestitutionModel::log_mach_inverse_angle;
 }
 
 double RestitutionFit::evaluate(double mach, double angle_deg) const {

@@ -186,6 +186,20 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
                   *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
     note += buf;
   }
+  // A fit in the deflection extrapolates beyond the training wedges too
+  // (1/theta grows fast below them).
+  const auto angles = training_angle_range(t);
+  const RestitutionFit* chosen = t.model ? t.fit(*t.model) : nullptr;
+  if (!shape && angle_deg && angles && chosen && uses_angle(chosen->model) &&
+      !angles->contains(*angle_deg)) {
+    std::snprintf(
+        buf, sizeof buf,
+        "; WARNING: the %g deg deflection lies outside the table's training range %g-%g deg, so "
+        "e(M, theta) is extrapolated%s and this prediction's error is unmeasured",
+        *angle_deg, angles->low, angles->high,
+        *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
+    note += buf;
+  }
   // A bow shock's prediction owes its band to the blunt training runs too.
   const double cost = std::isfinite(bow) ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
   return {note, cost, scatter, bow, outside};

@@ -79,7 +79,7 @@ TEST(RestitutionFit, LeaveOneOutPicksTheRightModel) {
   const auto c1 = pipeline::choose_restitution_model(mach_only);
   ASSERT_TRUE(c1.has_value());
   EXPECT_EQ(c1->fit().model, RestitutionModel::inverse_mach2);
-  EXPECT_EQ(c1->candidates.size(), 4u);
+  EXPECT_EQ(c1->candidates.size(), 6u);
 
   // A real angle dependence (0.02 over 8-20 deg) well above the same noise.
   const auto with_angle =
@@ -113,6 +113,28 @@ TEST(RestitutionFit, LogMachLawIsRecoveredAndChosen) {
   const auto c = pipeline::choose_restitution_model(synthetic(law, noise));
   ASSERT_TRUE(c.has_value());
   EXPECT_EQ(c->fit().model, RestitutionModel::log_mach);
+}
+
+TEST(RestitutionFit, AnAngleTermThatLevelsOffIsRecoveredAndChosen) {
+  // e falling with ln M and with a deflection term that levels off (1/theta),
+  // as the training crossings do, with noise of 0.0003: the 1/theta model
+  // wins out of sample over the linear angle terms.
+  const auto law = [](double m, double a) { return 1.01 - 0.03 * std::log(m) + 0.05 / a; };
+  const auto exact = synthetic(law, [](int) { return 0.0; });
+  const auto f = pipeline::fit_restitution(exact, RestitutionModel::log_mach_inverse_angle);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_NEAR(f->coefficients[0], 1.01, kCoefficientTolerance);
+  EXPECT_NEAR(f->coefficients[1], -0.03, kCoefficientTolerance);
+  EXPECT_NEAR(f->coefficients[2], 0.05, kCoefficientTolerance);
+  EXPECT_TRUE(pipeline::uses_angle(RestitutionModel::log_mach_inverse_angle));
+  EXPECT_EQ(pipeline::model_from_key("log_mach_inverse_angle"),
+            RestitutionModel::log_mach_inverse_angle);
+  EXPECT_EQ(pipeline::model_formula(RestitutionModel::log_mach_inverse_angle),
+            "e = c0 + c1*ln(M) + c2/theta_deg");
+  const auto noise = [](int i) { return (i % 2 == 0 ? 1.0 : -1.0) * 0.0003; };
+  const auto c = pipeline::choose_restitution_model(synthetic(law, noise));
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->fit().model, RestitutionModel::log_mach_inverse_angle);
 }
 
 TEST(RestitutionFit, LeaveOneOutPredictionIgnoresThePoint) {

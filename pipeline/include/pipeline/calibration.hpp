@@ -149,6 +149,8 @@ struct MachRange {
   bool contains(double mach) const { return mach >= low && mach <= high; }
 };
 std::optional<MachRange> training_mach_range(const CalibrationTable& t);
+// The training wedges' deflections (deg), in the same type; nullopt without entries.
+std::optional<MachRange> training_angle_range(const CalibrationTable& t);
 // The same for a shape's fit: its training bodies' Mach numbers.
 MachRange training_mach_range(const BowShapeFit& f);
 

@@ -38,7 +38,9 @@ nlohmann::json averaging_report(const nlohmann::json& r) {
           {"cpu_seconds", from(g, "cpu_seconds")},
           {"cpu_budget", from(g, "cpu_budget")},
           {"target_half_width", from(precision, "target_half_width")},
-          {"half_width", from(r, "shock_position_half_width")}};
+          {"half_width", from(r, "shock_position_half_width")},
+          {"interval_method", from(r, "interval_method")},
+          {"interval_groups", from(r, "interval_groups")}};
 }
 
 }  // namespace

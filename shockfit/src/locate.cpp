@@ -438,7 +438,8 @@ double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const Sh
   // The stations `like` kept, found again on this lattice: the same points
   // fitted the same way, so that the value moves with the data alone and not
   // with which stations pass the acceptance and outlier tests.
-  std::vector<scene::Vec2> pts;
+  std::vector<scene::Vec2> all;
+  std::vector<double> shift;  // along the normal, from the full fit's point
   const double cell = std::min(lat.dx, lat.dy);
   const double reach = (blunt_nose(g) ? kBluntParabolaReach : kParabolaReach) * g.length;
   for (const StationFit& f : like.stations) {
@@ -449,18 +450,39 @@ double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const Sh
     // fit's position is wanted even where the jump does not pass the noise
     // test (outliers are dropped below).
     if (!std::isfinite(q.distance)) continue;
-    pts.push_back(like.shock == ShockKind::detached ? q.shock - scene::Vec2{0.0, g.nose.y}
+    all.push_back(like.shock == ShockKind::detached ? q.shock - scene::Vec2{0.0, g.nose.y}
                                                     : q.shock);
+    shift.push_back(q.distance - f.distance);
   }
   if (like.shock == ShockKind::attached) {
-    // The same outlier test as the full fit: a group's noisier profile can
-    // put a station's jump far off the line.
+    // The full fit's outlier test about the line: a group's noisier profile
+    // can put a station's jump far off it.
     std::vector<scene::Vec2> good;
-    for (const std::size_t k : inliers(pts, kOutlierSigmas, kOutlierFloorCells * cell))
-      good.push_back(pts[k]);
+    for (const std::size_t k : inliers(all, kOutlierSigmas, kOutlierFloorCells * cell))
+      good.push_back(all[k]);
     return good.size() >= static_cast<std::size_t>(kMinAccepted)
                ? fit_orthogonal_line(good).angle_deg
                : kNaN;
+  }
+  // A bow shock's stations do not lie on a line: points whose shift from the
+  // full fit's lies beyond kOutlierSigmas robust sigmas of the others' (and
+  // at least a lattice spacing) are dropped before the parabola, whose
+  // vertex one wild station near the axis would throw (the default disc's
+  // standoff interval was 1.6x too wide without it, 0.95x with it).
+  std::vector<scene::Vec2> pts;
+  if (!shift.empty()) {
+    auto median = [](std::vector<double> v) {
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    const double mid = median(shift);
+    std::vector<double> dev;
+    for (const double x : shift) dev.push_back(std::abs(x - mid));
+    constexpr double kMadToSigma = 1.4826;
+    const double limit =
+        std::max(kOutlierSigmas * kMadToSigma * median(dev), kOutlierFloorCells * cell);
+    for (std::size_t k = 0; k < all.size(); ++k)
+      if (std::abs(shift[k] - mid) <= limit) pts.push_back(all[k]);
   }
   // Detached: the near-axis parabola's vertex through the same stations;
   // without one, the stagnation line.

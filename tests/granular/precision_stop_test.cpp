@@ -58,3 +58,17 @@ TEST(PrecisionStop, NeedsOneQuantityAndFiniteWidths) {
   c[3].half_width = std::nan("");
   EXPECT_FALSE(granular::interval_plateaued(c));
 }
+
+TEST(PrecisionStop, AGrowingIntervalIsNoPlateau) {
+  // The disc M3.5's standoff half-widths while its bow shock settled (0.050,
+  // 0.037, 0.066, 0.097 at 1-2.5 flow-through times): grown to twice its
+  // width at half the time, so averaging goes on; flat after it, it stops
+  // once both last checks compare with flat ones (6 and 6.5 against 3).
+  std::vector<PrecisionCheck> c{{1.0, 0.050, "standoff"},
+                                {1.5, 0.037, "standoff"},
+                                {2.0, 0.066, "standoff"},
+                                {2.5, 0.097, "standoff"}};
+  EXPECT_FALSE(granular::interval_plateaued(c));
+  for (double t = 3.0; t <= 6.5; t += 0.5) c.push_back({t, 0.06, "standoff"});
+  EXPECT_TRUE(granular::interval_plateaued(c));
+}

@@ -21,9 +21,15 @@ struct PrecisionCheck {
 // averaging does not reduce (the lattice's resolution of the shock, the fit
 // itself), so more averaging buys almost nothing.
 inline constexpr double kPlateauRatio = 0.9;
+// An interval that grew beyond this factor of its width at half the time is
+// no floor: the shock is still settling (the averaging groups then hold
+// different mixes of early and late slices; disc M3.5: 0.050, 0.037, 0.066,
+// 0.097 at 1-2.5 flow-through times, 0.025 at 4), and averaging on helps.
+inline constexpr double kGrowthRatio = 1.5;
 
-// The last two checks each hold at least kPlateauRatio of the half-width of
-// the latest check at or before half their averaging time, all with the same
+// The last two checks each hold at least kPlateauRatio, and at most
+// kGrowthRatio, of the half-width of the latest check at or before half
+// their averaging time, all with the same
 // quantity and finite widths. Two, because one interval moves by 10-20%
 // from check to check.
 bool interval_plateaued(const std::vector<PrecisionCheck>& checks);

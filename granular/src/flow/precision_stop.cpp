@@ -13,8 +13,9 @@ bool stalled(const std::vector<PrecisionCheck>& checks, std::size_t i) {
   for (std::size_t j = i; j-- > 0;) {
     const PrecisionCheck& then = checks[j];
     if (then.flow_throughs > 0.5 * now.flow_throughs) continue;
-    return std::isfinite(then.half_width) && then.half_width > 0.0 && then.quantity == now.quantity &&
-           now.half_width >= kPlateauRatio * then.half_width;
+    return std::isfinite(then.half_width) && then.half_width > 0.0 &&
+           then.quantity == now.quantity && now.half_width >= kPlateauRatio * then.half_width &&
+           now.half_width <= kGrowthRatio * then.half_width;
   }
   return false;
 }

@@ -365,24 +365,28 @@ MachRange training_mach_range(const BowShapeFit& f) {
   return r;
 }
 
-std::optional<MachRange> training_angle_range(const CalibrationTable& t) {
+namespace {
+
+// The smallest and largest of one coordinate over the training entries.
+std::optional<MachRange> entry_range(const CalibrationTable& t,
+                                     double CalibrationEntry::*coordinate) {
   if (t.entries.empty()) return std::nullopt;
-  MachRange r{t.entries.front().angle_deg, t.entries.front().angle_deg};
+  MachRange r{t.entries.front().*coordinate, t.entries.front().*coordinate};
   for (const auto& c : t.entries) {
-    r.low = std::min(r.low, c.angle_deg);
-    r.high = std::max(r.high, c.angle_deg);
+    r.low = std::min(r.low, c.*coordinate);
+    r.high = std::max(r.high, c.*coordinate);
   }
   return r;
 }
 
+}  // namespace
+
+std::optional<MachRange> training_angle_range(const CalibrationTable& t) {
+  return entry_range(t, &CalibrationEntry::angle_deg);
+}
+
 std::optional<MachRange> training_mach_range(const CalibrationTable& t) {
-  if (t.entries.empty()) return std::nullopt;
-  MachRange r{t.entries.front().mach, t.entries.front().mach};
-  for (const auto& c : t.entries) {
-    r.low = std::min(r.low, c.mach);
-    r.high = std::max(r.high, c.mach);
-  }
-  return r;
+  return entry_range(t, &CalibrationEntry::mach);
 }
 
 }  // namespace pipeline

@@ -174,6 +174,25 @@ TEST(Calibration, OutsideTheTrainingMachRangeIsSaid) {
   EXPECT_NE(below.note.find("held at e = 1"), std::string::npos);
 }
 
+TEST(Calibration, OutsideTheTrainingDeflectionsIsSaid) {
+  // The chosen model uses the wedge angle; the training entries span 8-20 deg.
+  const auto range = pipeline::training_angle_range(fitted_table());
+  ASSERT_TRUE(range.has_value());
+  EXPECT_DOUBLE_EQ(range->low, 8.0);
+  EXPECT_DOUBLE_EQ(range->high, 20.0);
+  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_angles.yaml").string();
+  pipeline::write_calibration(fitted_table(), path);
+  auto inside = scene::parse_scene("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 4}\n");
+  EXPECT_EQ(pipeline::apply_calibration(inside, path).note.find("WARNING"), std::string::npos);
+  auto thin = scene::parse_scene("body: {kind: wedge, angle_deg: 5}\nfreestream: {mach: 4}\n");
+  const auto applied = pipeline::apply_calibration(thin, path);
+  EXPECT_NE(
+      applied.note.find("the 5 deg deflection lies outside the table's training range 8-20 deg"),
+      std::string::npos)
+      << applied.note;
+  EXPECT_FALSE(applied.outside_training_mach);  // the Mach number is inside its range
+}
+
 TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
   const auto path = (std::filesystem::temp_directory_path() / "calib_bad_fit.yaml").string();
   const std::string entries = "entries: [{mach: 3, angle_deg: 10, restitution: 0.98}]\n";

@@ -21,17 +21,28 @@ std::optional<double> precision_target(const scene::Scene& s) {
   return kTargetFineCells * s.mesh.h_min * finest;
 }
 
-double shock_position_half_width(const scene::Scene& s, const shockfit::ShockResult& r) {
-  using scene::ShockKind;
-  if (r.shock == ShockKind::detached) return r.standoff_ci;
-  if (r.shock != ShockKind::attached || !s.body || !std::isfinite(r.shock_angle_ci_deg))
-    return scene::kNaN;
+namespace {
+
+// An attached shock pivots about the apex: the distance (body lengths) from
+// the nose to its farthest accepted point is the lever that turns an angle
+// into a displacement.
+double attached_reach(const scene::Scene& s, const shockfit::ShockResult& r) {
   const scene::BodyGeometry g = scene::make_body(*s.body);
   double reach = 0.0;
   for (const auto& st : r.stations)
     if (st.accepted && std::isfinite(st.shock.x))
       reach = std::max(reach, scene::norm(st.shock - g.nose));
-  return reach / g.length * std::tan(r.shock_angle_ci_deg * scene::kDeg);
+  return reach / g.length;
+}
+
+}  // namespace
+
+double shock_position_half_width(const scene::Scene& s, const shockfit::ShockResult& r) {
+  using scene::ShockKind;
+  if (r.shock == ShockKind::detached) return r.standoff_ci;
+  if (r.shock != ShockKind::attached || !s.body || !std::isfinite(r.shock_angle_ci_deg))
+    return scene::kNaN;
+  return attached_reach(s, r) * std::tan(r.shock_angle_ci_deg * scene::kDeg);
 }
 
 granular::PrecisionGoal precision_goal(const scene::Scene& s) {
@@ -54,9 +65,8 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
     } else if (r.shock == scene::ShockKind::attached && std::isfinite(m.half_width) &&
                r.shock_angle_ci_deg > 0) {
       m.value = r.shock_angle_deg;
-      // The same lever as the half-width: reach x tan(ci), per degree.
       m.value_to_position =
-          m.half_width / std::tan(r.shock_angle_ci_deg * scene::kDeg) * scene::kDeg;
+          attached_reach(s, r) * scene::kDeg;  // the half-width's lever, per degree
     }
     m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
                  : r.shock == scene::ShockKind::detached ? "standoff"

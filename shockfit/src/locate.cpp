@@ -471,18 +471,15 @@ double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const Sh
   // standoff interval was 1.6x too wide without it, 0.95x with it).
   std::vector<scene::Vec2> pts;
   if (!shift.empty()) {
-    auto median = [](std::vector<double> v) {
-      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-      return v[v.size() / 2];
-    };
-    const double mid = median(shift);
-    std::vector<double> dev;
-    for (const double x : shift) dev.push_back(std::abs(x - mid));
-    constexpr double kMadToSigma = 1.4826;
-    const double limit =
-        std::max(kOutlierSigmas * kMadToSigma * median(dev), kOutlierFloorCells * cell);
-    for (std::size_t k = 0; k < all.size(); ++k)
-      if (std::abs(shift[k] - mid) <= limit) pts.push_back(all[k]);
+    std::vector<double> order = shift;
+    std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2),
+                     order.end());
+    const double mid = order[order.size() / 2];
+    std::vector<double> centred;
+    for (const double x : shift) centred.push_back(x - mid);
+    for (const std::size_t k :
+         within_robust_sigmas(centred, kOutlierSigmas, kOutlierFloorCells * cell))
+      pts.push_back(all[k]);
   }
   // Detached: the near-axis parabola's vertex through the same stations;
   // without one, the stagnation line.

@@ -34,22 +34,31 @@ LineFit fit_orthogonal_line(const std::vector<scene::Vec2>& pts) {
   return l;
 }
 
-std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sigmas, double floor) {
+std::vector<std::size_t> within_robust_sigmas(const std::vector<double>& residuals, double sigmas,
+                                              double floor) {
   std::vector<std::size_t> keep;
+  if (residuals.empty()) return keep;
+  std::vector<double> a(residuals.size());
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = std::abs(residuals[i]);
+  const std::vector<double> d = a;
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  const double limit = std::max(sigmas * kMadToSigma * a[a.size() / 2], floor);
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (d[i] <= limit) keep.push_back(i);
+  return keep;
+}
+
+std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sigmas, double floor) {
   if (pts.size() < 3) {
+    std::vector<std::size_t> keep;
     for (std::size_t i = 0; i < pts.size(); ++i) keep.push_back(i);
     return keep;
   }
   const LineFit l = fit_orthogonal_line(pts);
   const scene::Vec2 nrm = scene::perp(l.dir);
-  std::vector<double> d(pts.size()), a;
-  for (std::size_t i = 0; i < pts.size(); ++i) d[i] = std::abs(scene::dot(pts[i] - l.point, nrm));
-  a = d;
-  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
-  const double limit = std::max(sigmas * kMadToSigma * a[a.size() / 2], floor);
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    if (d[i] <= limit) keep.push_back(i);
-  return keep;
+  std::vector<double> d(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) d[i] = scene::dot(pts[i] - l.point, nrm);
+  return within_robust_sigmas(d, sigmas, floor);
 }
 
 std::pair<double, double> fit_axis_parabola(const std::vector<scene::Vec2>& pts) {

@@ -160,11 +160,14 @@ std::vector<scene::Lattice> make_group_fields(const scene::Lattice& fields,
                                               const std::vector<FieldSums>& groups) {
   std::vector<scene::Lattice> out;
   if (groups.size() < 2) return out;
-  FieldSums total(groups.front().cells());
-  for (const FieldSums& b : groups) total += b;
+  // The pooled counts are the fields' own samples (integers, exact in any
+  // order of summation): no second pooling of the groups.
   const auto& nu = fields.field("volume_fraction");
+  const auto& samples = fields.field("samples");
   const auto& inside = fields.field("inside_body");
-  const double per_total = total.snapshots() > 0 ? 1.0 / total.snapshots() : 0.0;
+  double snapshots = 0.0;
+  for (const FieldSums& g : groups) snapshots += g.snapshots();
+  const double per_total = snapshots > 0 ? 1.0 / snapshots : 0.0;
   for (const FieldSums& g : groups) {
     scene::Lattice lat(fields.nx, fields.ny, fields.x0, fields.y0, fields.dx, fields.dy);
     lat.fields["inside_body"] = inside;
@@ -173,14 +176,14 @@ std::vector<scene::Lattice> make_group_fields(const scene::Lattice& fields,
     auto& gs = lat.add("samples", kNaN);
     const double per_group = g.snapshots() > 0 ? 1.0 / g.snapshots() : 0.0;
     for (std::size_t c = 0; c < g.cells(); ++c) {
+      if (!std::isfinite(nu[c])) continue;
       // The same cell area as the pooled fields': the group's volume
       // fraction is the pooled one scaled by its disks per snapshot.
-      const double n_all = total.at(FieldSums::count, c) * per_total;
+      const double n_all = samples[c] * per_total;
       const double n = g.at(FieldSums::count, c);
-      if (!std::isfinite(nu[c])) continue;
       // The pooled count: a locator's sample gate then picks the cells it
       // picks in the pooled fields, and only the data differ.
-      gs[c] = total.at(FieldSums::count, c);
+      gs[c] = samples[c];
       gnu[c] = n_all > 0 ? nu[c] * n * per_group / n_all : 0.0;
       if (n > 0) gv[c] = g.at(FieldSums::sum_v, c) / n;
     }

@@ -16,6 +16,11 @@ struct LineFit {
 // Orthogonal (total least squares) line through the points.
 LineFit fit_orthogonal_line(const std::vector<scene::Vec2>& pts);
 
+// Indices of residuals within `sigmas` robust sigmas (MAD of the residuals
+// about zero, as Gaussian sigma) of zero, and at least `floor`.
+std::vector<std::size_t> within_robust_sigmas(const std::vector<double>& residuals, double sigmas,
+                                              double floor);
+
 // Indices of points within `sigmas` robust sigmas (and at least `floor`) of
 // the line fitted through all of them.
 std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sigmas, double floor);

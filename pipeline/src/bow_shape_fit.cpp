@@ -5,10 +5,12 @@
 #include <map>
 #include <sstream>
 
+#include "cfd/history.hpp"
 #include "json_fields.hpp"
 #include "pipeline/restitution_crossing.hpp"
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
+#include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/cpu_clock.hpp"
 #include "scene/errors.hpp"
@@ -19,21 +21,16 @@ namespace pipeline {
 
 namespace {
 using scene::kNaN;
-// The crossing is where the granular standoff equals the gas's.
+// The crossing is where the granular standoff equals the gas's, on a line
+// through the swept e this close to it (1.5 sweep steps: the standoff's
+// curvature in e stays below the runs' scatter over that range).
 constexpr double kSameStandoff = 1.0;
+constexpr double kCrossingLineWindow = 0.0075;
 
 std::string e_dir(const std::string& root, const std::string& body, const char* what, double e) {
   std::ostringstream d;
   d << root << "/" << body << "/" << what << e;
   return d.str();
-}
-
-double gas_standoff(const BowTrainingRun& r) {
-  const auto j = nlohmann::json::parse(scene::read_file(r.gas_summary), nullptr, false);
-  const double d = j.is_discarded() ? kNaN : number_or_nan(j, "standoff");
-  if (!(d > 0))
-    throw scene::InputError(r.gas_summary + ": key 'standoff': the gas shock has no standoff");
-  return d;
 }
 
 // One sweep run's measure: granular standoff / gas standoff, and its 95%
@@ -43,12 +40,37 @@ double gas_standoff(const BowTrainingRun& r) {
 // is a misfit, not a measure to cross a 5% target with.
 constexpr double kMaxStandoffRelativeCi = 0.1;
 
-SweepPoint standoff_ratio_point(double e, const nlohmann::json& granular_summary,
-                                double gas_standoff) {
+SweepPoint standoff_ratio_point(double e, const nlohmann::json& granular_summary, double gas) {
   const double d = number_or_nan(granular_summary, "standoff");
   const double ci = number_or_nan(granular_summary, "standoff_ci");
   const bool ok = d > 0 && ci / d <= kMaxStandoffRelativeCi;  // NaN fails
-  return {e, ok ? d / gas_standoff : kNaN, ci / gas_standoff};
+  return {e, ok ? d / gas : kNaN, ci / gas};
+}
+
+// Runs of one e at several seeds: the inverse-variance weighted mean ratio
+// and its 95% half-width. A run whose bow-shock fit went astray (a stray
+// station pulling the vertex) says so with a wide interval, and so counts
+// little. Misfits are left out; none left: NaN.
+SweepPoint mean_point(double e, const std::vector<SweepPoint>& runs) {
+  double sw = 0, swx = 0;
+  for (const auto& p : runs)
+    if (std::isfinite(p.angle) && p.ci > 0) {
+      const double w = 1.0 / (p.ci * p.ci);
+      sw += w;
+      swx += w * p.angle;
+    }
+  if (!(sw > 0)) return {e, kNaN, kNaN};
+  return {e, swx / sw, 1.0 / std::sqrt(sw)};
+}
+
+// A body's k-th seed. A run's replicas take consecutive seeds from its own,
+// so seeds this far apart share no replica.
+constexpr std::uint64_t kSeedStride = 100;
+std::uint64_t nth_seed(std::uint64_t base, int k) {
+  return base + static_cast<std::uint64_t>(k) * kSeedStride;
+}
+std::string seed_dir(const std::string& dir, int k, std::uint64_t seed) {
+  return k == 0 ? dir : dir + "_seed" + std::to_string(seed);
 }
 
 struct Measured {
@@ -78,19 +100,29 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
   std::vector<SweepPoint> pts;
   nlohmann::json sweep = nlohmann::json::array();
   const auto measure = [&](double e) {
-    const auto m = run_at(s, e, s.granular.seed, e_dir(o.cache_dir, s.name, "e", e), o.np);
-    cpu += m.cpu;
-    const SweepPoint p = standoff_ratio_point(e, m.summary, gas);
+    std::vector<SweepPoint> runs;
+    nlohmann::json seeds = nlohmann::json::array();
+    for (int k = 0; k < o.seeds; ++k) {
+      const std::uint64_t seed = nth_seed(s.granular.seed, k);
+      const auto m =
+          run_at(s, e, seed, seed_dir(e_dir(o.cache_dir, s.name, "e", e), k, seed), o.np);
+      cpu += m.cpu;
+      runs.push_back(standoff_ratio_point(e, m.summary, gas));
+      seeds.push_back({{"seed", seed},
+                       {"standoff", json_number(number_or_nan(m.summary, "standoff"))},
+                       {"standoff_ci", json_number(number_or_nan(m.summary, "standoff_ci"))}});
+    }
+    const SweepPoint p = mean_point(e, runs);
     pts.push_back(p);
     std::sort(pts.begin(), pts.end(),
               [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
     sweep.push_back({{"restitution", e},
-                     {"standoff", json_number(number_or_nan(m.summary, "standoff"))},
-                     {"standoff_ci", json_number(number_or_nan(m.summary, "standoff_ci"))},
-                     {"standoff_ratio", json_number(p.angle)}});
+                     {"runs", seeds},
+                     {"standoff_ratio", json_number(p.angle)},
+                     {"standoff_ratio_ci", json_number(p.ci)}});
     scene::log_line("calibrate: " + s.name + " e = " + std::to_string(e) + ": standoff " +
-                    std::to_string(number_or_nan(m.summary, "standoff")) + " against the gas's " +
-                    std::to_string(gas));
+                    std::to_string(p.angle * gas) + " (mean of " + std::to_string(o.seeds) +
+                    " seeds) against the gas's " + std::to_string(gas));
   };
   for (const double off : o.offsets) {
     const double e = swept_restitution(e_wedge + off);
@@ -102,7 +134,7 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
     if (!next) break;
     measure(*next);
   }
-  const auto c = find_crossing(pts, kSameStandoff);
+  const auto c = find_crossing_by_line(pts, kSameStandoff, kCrossingLineWindow);
   report = {{"body", s.name},
             {"mach", s.freestream.mach},
             {"gas_standoff", gas},
@@ -119,25 +151,52 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
   return Crossed{p, &run};
 }
 
-// The left-out e at a fresh seed, against the gas shock.
+// The left-out e at fresh seeds, against the gas shock: the standoff's mean
+// over the seeds, the stations' errors pooled over them.
 void check_left_out(BowShapePoint& p, const BowTrainingRun& run, const BowShapeOptions& o,
                     double& cpu, nlohmann::json& report) {
   const double e = swept_restitution(p.loo_restitution);
   const std::string dir = e_dir(o.cache_dir, run.scene.name, "loo_e", e);
-  const auto m = run_at(run.scene, e, run.scene.granular.seed + kLeaveOneOutSeedOffset, dir, o.np);
-  cpu += m.cpu;
-  const StationErrors st = station_errors(dir + "/shockfit/shock.csv", run.gas_csv);
-  p.loo_mean = st.mean;
-  p.loo_rms = st.rms;
-  p.loo_standoff = number_or_nan(m.summary, "standoff") / gas_standoff(run) - 1.0;
-  report["left_out"] = {{"restitution", e},
-                        {"seed", run.scene.granular.seed + kLeaveOneOutSeedOffset},
-                        {"stations", st.relative.size()},
-                        {"relative_mean", st.mean},
-                        {"relative_rms", st.rms},
-                        {"standoff_relative_error", json_number(p.loo_standoff)}};
+  const double gas = gas_standoff(run);
+  double standoff = 0, ss = 0, sum = 0;
+  std::size_t stations = 0;
+  nlohmann::json seeds = nlohmann::json::array();
+  for (int k = 0; k < o.seeds; ++k) {
+    const std::uint64_t seed = nth_seed(run.scene.granular.seed + kLeaveOneOutSeedOffset, k);
+    const std::string d = seed_dir(dir, k, seed);
+    const auto m = run_at(run.scene, e, seed, d, o.np);
+    cpu += m.cpu;
+    const StationErrors st = station_errors(d + "/shockfit/shock.csv", run.gas_csv);
+    const double n = static_cast<double>(st.relative.size());
+    ss += st.rms * st.rms * n;
+    sum += st.mean * n;
+    stations += st.relative.size();
+    const double standoff_k = number_or_nan(m.summary, "standoff");
+    standoff += standoff_k / o.seeds;
+    seeds.push_back({{"seed", seed},
+                     {"standoff", json_number(standoff_k)},
+                     {"standoff_relative_error", json_number(standoff_k / gas - 1.0)},
+                     {"relative_rms", st.rms}});
+  }
+  const double n = static_cast<double>(stations);
+  p.loo_mean = sum / n;
+  p.loo_rms = std::sqrt(ss / n);
+  p.loo_standoff = standoff / gas - 1.0;
+  report["left_out"] = {
+      {"restitution", e},          {"runs", seeds},
+      {"stations", stations},      {"relative_mean", p.loo_mean},
+      {"relative_rms", p.loo_rms}, {"standoff_relative_error", json_number(p.loo_standoff)}};
 }
 }  // namespace
+
+double gas_standoff(const BowTrainingRun& r) {
+  const scene::BodyGeometry g = scene::make_body(*r.scene.body);
+  const double d = (g.nose.x - cfd::last_history_value(r.gas_case, "shock_x")) / g.length;
+  if (!(d > 0))
+    throw scene::InputError(r.gas_case +
+                            "/history.csv: key 'shock_x': the gas shock is not ahead of the nose");
+  return d;
+}
 
 StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationTable& t,
                                    const BowShapeOptions& o) {
@@ -182,7 +241,8 @@ BowShapeResult fit_bow_shapes(const std::vector<BowTrainingRun>& runs,
   BowShapeResult out;
   out.report = nlohmann::json::array();
   // Said before it starts: the sweeps are minutes to an hour, not seconds.
-  const std::size_t per_body = o.offsets.size() + static_cast<std::size_t>(o.refinements) + 1;
+  const std::size_t per_body = (o.offsets.size() + static_cast<std::size_t>(o.refinements) + 1) *
+                               static_cast<std::size_t>(o.seeds);
   scene::log_line("calibrate: fitting blunt shapes on " + std::to_string(runs.size()) +
                       " bodies: up to " + std::to_string(per_body * runs.size()) +
                       " granular runs (10-60 CPU s each at the default granular scale; cached "

@@ -115,10 +115,9 @@ BowTrainingRun bow_training_run(const std::string& run_dir) {
     }
   if (!std::isfinite(finest))
     throw scene::InputError(summary_path + ": key 'runs': no uniform grid reached steady state");
-  const std::string gas = run_dir + "/cfd/" + level_name("uniform", finest) + "/shockfit/";
-  return {
-      s,       run_dir, gas + "shock.csv", gas + "summary.json", number_or_nan(pred, "cpu_seconds"),
-      grid_cpu};
+  const std::string gas = run_dir + "/cfd/" + level_name("uniform", finest);
+  return {s,       run_dir, gas + "/shockfit/shock.csv", gas, number_or_nan(pred, "cpu_seconds"),
+          grid_cpu};
 }
 
 StationErrors run_station_errors(const std::string& run_dir) {
@@ -182,6 +181,13 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   if (shapes) {
     const BowShapeResult fitted = fit_bow_shapes(runs, bodies, table, *shapes);
     scatter.shapes = fitted.fits;
+    // A shape none of these runs holds keeps the fit its own bodies gave.
+    if (table.bow_shock)
+      for (const auto& old : table.bow_shock->shapes)
+        if (std::none_of(runs.begin(), runs.end(), [&](const BowTrainingRun& r) {
+              return scene::bow_shape_class(*r.scene.body) == old.shape;
+            }))
+          scatter.shapes.push_back(old);
     scatter.cpu_seconds += fitted.cpu_seconds;
     shape_report = {{"bodies", fitted.report}, {"fits", fitted.shapes}};
   }

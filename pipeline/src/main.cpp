@@ -113,7 +113,13 @@ int main(int argc, char** argv) {
     calib->add_flag(
         "--fit-shapes", fit_shapes,
         "with --bow-shock-runs: also fit each blunt shape's own e(M) on the runs' bodies "
-        "(granular sweeps cached under --out; at least three bodies per shape)");
+        "(granular sweeps cached under --out; at least three bodies per shape; a shape "
+        "none of the runs holds keeps the table's fit)");
+    int shape_seeds = pipeline::BowShapeOptions{}.seeds;
+    calib
+        ->add_option("--shape-seeds", shape_seeds,
+                     "with --fit-shapes: granular runs per swept e, at seeds sharing no replica")
+        ->check(CLI::PositiveNumber);
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,
@@ -206,6 +212,7 @@ int main(int argc, char** argv) {
         pipeline::BowShapeOptions shape_options;
         shape_options.cache_dir = co.out_dir;
         shape_options.np = co.np;
+        shape_options.seeds = shape_seeds;
         std::cout << pipeline::calibrate_bow_shocks(bow_runs, co.table_path,
                                                     fit_shapes ? &shape_options : nullptr)
                          .dump(2)

@@ -8,6 +8,9 @@
 namespace pipeline {
 
 namespace {
+// The two-sided 95% quantile of the normal distribution: a run's interval
+// over its standard deviation.
+constexpr double kZ95 = 1.96;
 // A fit with a wider 95% interval than this is noise, not a shock angle.
 constexpr double kMaxUsableCiDeg = 5.0;
 bool already_run(const std::vector<SweepPoint>& pts, double e) {
@@ -45,6 +48,47 @@ std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double
     }
   }
   return std::nullopt;
+}
+
+std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts, double target,
+                                              double window) {
+  const auto c = find_crossing(pts, target);
+  if (!c) return std::nullopt;
+  // Weighted sums about the bracket's crossing, in units of the runs' sd.
+  double s = 0, sx = 0, sxx = 0, sy = 0, sxy = 0;
+  std::vector<SweepPoint> near;
+  for (const auto& p : pts)
+    if (usable(p) && p.ci > 0 && std::abs(p.e - c->e) <= window) {
+      const double sd = p.ci / kZ95;
+      const double w = 1.0 / (sd * sd), x = p.e - c->e;
+      s += w;
+      sx += w * x;
+      sxx += w * x * x;
+      sy += w * p.angle;
+      sxy += w * x * p.angle;
+      near.push_back(p);
+    }
+  if (near.size() < 3) return c;
+  const double det = s * sxx - sx * sx;
+  if (!(det > 0)) return c;
+  const double slope = (s * sxy - sx * sy) / det;
+  const double at = (sxx * sy - sx * sxy) / det;
+  double rise = 0;  // the bracketing pair's: the line must run the same way
+  for (const auto& p : pts)
+    if (usable(p) && (p.e == c->e_low || p.e == c->e_high))
+      rise += p.e == c->e_high ? p.angle : -p.angle;
+  if (!(slope * rise > 0)) return c;
+  double chi2 = 0;
+  for (const auto& p : near) {
+    const double sd = p.ci / kZ95, r = p.angle - at - slope * (p.e - c->e);
+    chi2 += r * r / (sd * sd);
+  }
+  const double dof = static_cast<double>(near.size()) - 2.0;
+  const double scale = std::max(1.0, chi2 / dof);
+  const double x = (target - at) / slope;
+  if (std::abs(x) > window) return c;
+  const double var = (sxx - 2.0 * x * sx + x * x * s) / det / (slope * slope) * scale;
+  return Crossing{c->e + x, kZ95 * std::sqrt(var), c->e_low, c->e_high};
 }
 
 std::optional<double> next_restitution(const std::vector<SweepPoint>& pts, double target) {

@@ -126,3 +126,39 @@ TEST(BowShapeFit, TableWithATwoBodyShapeIsRefused) {
         << e.what();
   }
 }
+
+// The gas's standoff is the uniform grid's own stagnation-line reading where
+// it stopped (history.csv), in body lengths from the nose: a disc of radius
+// 0.5 (the body length) with its nose at x = -0.5 and the shock read at
+// x = -0.775 at the last written time stands 0.55 radii off.
+TEST(BowShapeFit, GasStandoffIsTheFinestUniformGridsStagnationLineReading) {
+  const fs::path d = fs::temp_directory_path() / "shockgrain_bow_gas_standoff";
+  fs::remove_all(d);
+  fs::create_directories(d / "cfd/uniform_h1");
+  fs::create_directories(d / "cfd/uniform_h2");
+  scene::write_file_atomic((d / "scene.resolved.yaml").string(),
+                           "name: disc_M3.3\nbody: {kind: disc, radius: 0.5}\n"
+                           "freestream: {mach: 3.3}\n");
+  scene::write_file_atomic((d / "summary.json").string(),
+                           R"({"prediction": {"predictor": "granular", "cpu_seconds": 5},
+          "runs": [{"family": "uniform", "level": 2, "steady_state_reached": true,
+                    "cpu_seconds": 10, "mesh_cpu_seconds": 1},
+                   {"family": "uniform", "level": 1, "steady_state_reached": true,
+                    "cpu_seconds": 40, "mesh_cpu_seconds": 2}]})");
+  scene::write_file_atomic((d / "cfd/uniform_h2/history.csv").string(),
+                           "time,shock_x\n1,-0.70\n2,-0.80\n");
+  scene::write_file_atomic((d / "cfd/uniform_h1/history.csv").string(),
+                           "time,shock_x\n1,-0.70\n2,-0.775\n3,nan\n");
+  const auto run = pipeline::bow_training_run(d.string());
+  EXPECT_NEAR(pipeline::gas_standoff(run), 0.55, 1e-12);
+  EXPECT_DOUBLE_EQ(run.grid_cpu_seconds, 42.0);
+
+  // A reading behind the nose is no standoff: refused, naming the file.
+  scene::write_file_atomic((d / "cfd/uniform_h1/history.csv").string(), "time,shock_x\n1,-0.4\n");
+  try {
+    pipeline::gas_standoff(run);
+    FAIL() << "a shock behind the nose was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("uniform_h1/history.csv"), std::string::npos) << e.what();
+  }
+}

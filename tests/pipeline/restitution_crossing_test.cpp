@@ -53,3 +53,33 @@ TEST(RestitutionCrossing, SearchesTowardsTheGasAngleWithoutACrossing) {
   const std::vector<SweepPoint> top{{0.98, 19.0, 0.4}, {1.0, 20.0, 0.2}};
   EXPECT_FALSE(pipeline::next_restitution(top, 25.0).has_value());
 }
+
+// A blunt body's sweep: standoff ratios on the line 1 + 20 (e - 0.965), one
+// run in the bracket off by twice its interval. The bracket's interpolation
+// follows the stray run; the line through the five runs stays near 0.965
+// and its interval covers it.
+TEST(RestitutionCrossing, ALineThroughSeveralRunsOutvotesAStrayOne) {
+  const auto ratio = [](double e) { return 1.0 + 20.0 * (e - 0.965); };
+  std::vector<SweepPoint> pts;
+  for (const double e : {0.955, 0.96, 0.9625, 0.97, 0.975}) pts.push_back({e, ratio(e), 0.02});
+  pts[2].angle += 0.04;  // e = 0.9625 reads 2 intervals high
+  const auto bracket = pipeline::find_crossing(pts, 1.0);
+  const auto line = pipeline::find_crossing_by_line(pts, 1.0, 0.012);
+  ASSERT_TRUE(bracket && line);
+  EXPECT_GT(std::abs(bracket->e - 0.965), 0.0015);
+  EXPECT_LT(std::abs(line->e - 0.965), 0.0005);
+  EXPECT_LT(std::abs(line->e - 0.965), line->e_ci);
+  EXPECT_EQ(line->e_low, bracket->e_low);
+
+  // Exact runs: the line is the truth, its interval the runs' alone.
+  pts[2].angle = ratio(0.9625);
+  const auto exact = pipeline::find_crossing_by_line(pts, 1.0, 0.012);
+  ASSERT_TRUE(exact);
+  EXPECT_NEAR(exact->e, 0.965, kTolerance);
+  EXPECT_LT(exact->e_ci, 0.001);
+
+  // Fewer than three runs near the crossing: the bracket's answer.
+  const std::vector<SweepPoint> two{{0.96, ratio(0.96), 0.02}, {0.97, ratio(0.97), 0.02}};
+  EXPECT_NEAR(pipeline::find_crossing_by_line(two, 1.0, 0.0075)->e,
+              pipeline::find_crossing(two, 1.0)->e, kTolerance);
+}

@@ -1,7 +1,8 @@
 #pragma once
 // A restitution per blunt shape: on each training body, the e at which the
 // granular bow shock stands off as far as the gas's (shockfit's standoff,
-// the fitted shock vertex's distance from the nose), then e = c0 + c1/M^2
+// the fitted shock vertex's distance from the nose; the gas's from its own
+// cells on the stagnation line), then e = c0 + c1/M^2
 // fitted per shape class and judged by leaving each body out
 // (docs/calibration.md, "A restitution per blunt shape").
 #include <nlohmann/json.hpp>
@@ -21,7 +22,20 @@ struct BowShapeOptions {
   // then `refinements` runs bisect the bracketing interval.
   std::vector<double> offsets{-0.015, -0.01, -0.005, 0.0, 0.005, 0.01};
   int refinements = 2;
+  // Runs per e, at seeds that share no replica: one run's standoff scatters
+  // by +-3-4% (95%), several times what 0.001 of e moves it on a disc.
+  int seeds = 3;
 };
+
+// The gas's standoff of a training run, in body lengths: where the finest
+// steady uniform grid's own cells put the density midpoint on the stagnation
+// line when it stopped (cfd's shock probe, history.csv `shock_x`). Not
+// shockfit's standoff on the grid's resampled lattice: the lattice's spacing
+// (2% of a disc radius at 200 points) and the fitted vertex moved that by up
+// to 6% from one uniform level to the next on the disc M4 case study, where
+// the probe's readings on the two finest grids agree to 0.2%. InputError
+// naming the file when there is no such reading.
+double gas_standoff(const BowTrainingRun& run);
 
 // e = c0 + c1/M^2 through the crossings, and each point's left-out e.
 // nullopt with fewer than three points (two leave no left-out fit) or a

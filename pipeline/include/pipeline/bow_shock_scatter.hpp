@@ -28,11 +28,12 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
 
 // A blunt training body: a finished `pipeline run` of it with the granular
 // predictor, checked as below, and the gas shock it is compared with (the
-// finest steady uniform grid's shockfit stations and summary).
+// finest steady uniform grid's shockfit stations, and its case directory,
+// whose history.csv holds its own stagnation-line shock).
 struct BowTrainingRun {
   scene::Scene scene;
   std::string run_dir;
-  std::string gas_csv, gas_summary;
+  std::string gas_csv, gas_case;
   double predictor_cpu_seconds = scene::kNaN, grid_cpu_seconds = scene::kNaN;
 };
 BowTrainingRun bow_training_run(const std::string& run_dir);

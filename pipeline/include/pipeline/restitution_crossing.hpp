@@ -32,6 +32,18 @@ struct Crossing {
 // least dissipative crossing. `pts` sorted by e.
 std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double target);
 
+// Where a straight line through the usable runs within `window` of
+// find_crossing's e meets `target`: several noisy runs pin a crossing
+// better than the two that bracket it (a blunt body's granular standoff
+// scatters by several percent from run to run). Weights 1/ci^2; the 95%
+// half-width is the line's, through its intercept and slope, scaled up by
+// the residuals where they scatter more than the runs' intervals say.
+// find_crossing's answer with fewer than three runs in the window, or
+// where the line is flat, slopes against the bracket, or meets `target`
+// outside the window.
+std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts, double target,
+                                              double window);
+
 // The next e to run: the midpoint of the bracketing interval (a chord
 // across the convex angle(e) puts the crossing too low); without a crossing,
 // a step towards the gas angle: halfway to the nearest run beyond the usable

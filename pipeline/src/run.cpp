@@ -140,6 +140,12 @@ std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR)
 
 AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return {};
+  if (s.granular.elastic_impact_speed > 0.0)
+    throw scene::InputError(
+        "scene " + s.name +
+        ": key 'granular.elastic_impact_speed': the calibration tables are fitted without "
+        "elastic slow impacts, so no table gives this gas's restitution; set "
+        "granular.restitution as well");
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
   // wedges that the report states.

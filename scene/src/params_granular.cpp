@@ -22,6 +22,9 @@ constexpr double kMaxTargetHalfWidth = 1.0;
 // Gravity per unit mass, in T/(m d): a thousand times the thermal scale
 // already throws every disk onto the floor within one collision time.
 constexpr double kMaxGravity = 1e3;
+// Elastic impacts below this many thermal speeds: beyond the stream's own
+// speed at the Mach ceiling every impact would be elastic, the gas ideal.
+constexpr double kMaxImpactSpeed = 100.0;
 // `target_half_width`: a half-width in body lengths, or `mesh`.
 void parse_precision_target(Section& s, GranularParams& p) {
   const std::optional<std::string> text = s.opt_string("target_half_width");
@@ -53,6 +56,8 @@ GranularParams parse_granular(Section& s) {
   p.collisions = s.opt_number("collisions", {0.0, kMaxCollisions, true, false});
   p.time = s.opt_number("time", positive());
   p.tc = s.number("tc", p.tc, non_negative());
+  p.elastic_impact_speed =
+      s.number("elastic_impact_speed", p.elastic_impact_speed, {0.0, kMaxImpactSpeed});
   p.checkpoint_interval = s.opt_number("checkpoint_interval", {0.0, kMaxCollisions, true, false});
   p.gravity = s.vec2("gravity", p.gravity);
   if (std::abs(p.gravity.x) > kMaxGravity || std::abs(p.gravity.y) > kMaxGravity)
@@ -86,6 +91,7 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
   emit_opt(e, "collisions", p.collisions);
   emit_opt(e, "time", p.time);
   emit_kv(e, "tc", p.tc);
+  emit_kv(e, "elastic_impact_speed", p.elastic_impact_speed);
   emit_opt(e, "checkpoint_interval", p.checkpoint_interval);
   emit_vec2(e, "gravity", p.gravity);
   emit_opt(e, "mach", p.mach);

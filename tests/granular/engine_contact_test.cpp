@@ -80,6 +80,23 @@ TEST(EngineContact, TcModelMakesRepeatedCollisionsElastic) {
   EXPECT_NEAR(s[2].v.x, 0.75, kExact);
 }
 
+// A speed-dependent restitution: an impact slower than elastic_below
+// bounces elastically, a faster one loses energy as its restitution says.
+TEST(EngineContact, SlowImpactsAreElasticBelowTheThreshold) {
+  const auto after = [](double speed) {
+    EngineConfig c = test::open_space();
+    c.restitution = {0.5};
+    c.elastic_below = 3.0;
+    Engine e(c);
+    e.add({10, 20}, {0.5 * speed, 0});
+    e.add({13, 20}, {-0.5 * speed, 0});
+    e.run_collisions(1);
+    return test::snapshot(e)[1].v.x;  // rebound speed of the second disk
+  };
+  EXPECT_NEAR(after(2.9), 0.5 * 2.9, kExact);        // elastic
+  EXPECT_NEAR(after(4.0), 0.5 * 0.5 * 4.0, kExact);  // e = 0.5
+}
+
 TEST(EngineContact, PeriodicImageCollision) {
   Engine e(test::open_space(10.0));
   e.add({0.75, 5}, {-1, 0});

@@ -104,6 +104,20 @@ TEST(BowShapeFit, TableKeepsItAndOnlyThatShapeTakesIt) {
   // inside the wedge table's.
   auto slow = scene::parse_scene("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 2.6}\n");
   EXPECT_TRUE(pipeline::apply_calibration(slow, path).outside_training_mach);
+
+  // The tables are fitted with every impact at the table's e: a gas with
+  // elastic slow impacts gets no e from them, and says which key to set.
+  auto elastic = scene::parse_scene(
+      "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4.0}\n"
+      "granular: {elastic_impact_speed: 4}\n");
+  try {
+    pipeline::apply_calibration(elastic, path);
+    FAIL() << "a table's e was applied to a gas it was not fitted on";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("granular.restitution"), std::string::npos) << e.what();
+  }
+  elastic.granular.restitution_given = true;
+  EXPECT_NO_THROW(pipeline::apply_calibration(elastic, path));
 }
 
 // A shape fit with fewer than three bodies is a malformed table.

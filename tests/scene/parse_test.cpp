@@ -106,6 +106,10 @@ TEST(Parse, OutOfRangeValues) {
   expect_error("body: {kind: wedge}\nfreestream: {mach: -2}\n", "expected a number > 0, got -2");
   expect_error(std::string(kMinimal) + "granular: {restitution: 1.5}\n", "key 'granular.restitution': expected a number in (0, 1], got 1.5");
   expect_error(std::string(kMinimal) + "granular: {restitution: 0}\n", "expected a number in (0, 1], got 0");
+  expect_error(std::string(kMinimal) + "granular: {elastic_impact_speed: -1}\n",
+               "key 'granular.elastic_impact_speed'");
+  expect_error(std::string(kMinimal) + "granular: {elastic_impact_speed: 1e9}\n",
+               "key 'granular.elastic_impact_speed'");
   expect_error("body: {kind: disc, radius: -1}\nfreestream: {mach: 3}\n", "key 'body.radius': expected a number > 0");
   expect_error("body: {kind: wedge}\nfreestream: {mach: 3, gamma: 0.9}\n", "key 'freestream.gamma'");
   expect_error(std::string(kMinimal) + "mesh: {h_min: 0.1, h_max: 0.01}\n", "key 'mesh.h_min': must not exceed h_max");

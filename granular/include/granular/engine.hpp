@@ -93,6 +93,9 @@ struct EngineConfig {
   // TC model (Luding & McNamara): a collision within tc of either disk's
   // previous collision is elastic, so inelastic collapse cannot stall a run.
   double tc = 0.0;
+  // Disk-disk impacts with a normal approach speed below this are elastic
+  // (a speed-dependent restitution, as of viscoelastic disks); 0: none.
+  double elastic_below = 0.0;
   // Smallest cell side; 0: the largest diameter. Cells are never smaller
   // than the largest diameter.
   double min_cell = 0.0;
@@ -207,6 +210,7 @@ struct FlowConfig {
   double packing_fraction = 0.05; // inflow nu = n pi d^2 / 4
   double radius = 0.5, mass = 1.0;
   double restitution = 1.0, restitution_wall = 1.0, tc = 0.0;
+  double elastic_below = 0.0;  // EngineConfig::elastic_below (units of sqrt(T/m))
   Vec2 gravity{0, 0};
   std::uint64_t seed = 1;
   bool prefill = true;  // start with free stream filling the domain outside the body

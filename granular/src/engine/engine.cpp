@@ -713,6 +713,7 @@ void Engine::Impl::collide_disks(std::int32_t i, std::int32_t j) {
   if (vn < 0.0) {
     double e = e_disk[a.species * ns + b.species];
     if (now - p[i].last_coll < cfg.tc || now - p[j].last_coll < cfg.tc) e = 1.0;
+    if (-vn < cfg.elastic_below) e = 1.0;
     const double ma = mass[a.species], mb = mass[b.species];
     const double jimp = (1.0 + e) * vn * (ma * mb / (ma + mb));  // < 0
     if (e != 1.0) integrate_energy();

@@ -122,6 +122,7 @@ FlowSetup make_flow_setup(const scene::Scene& s) {
   c.restitution = p.restitution;
   c.restitution_wall = p.restitution_wall.value_or(p.restitution);
   c.tc = p.tc;
+  c.elastic_below = p.elastic_impact_speed;
   c.gravity = p.gravity;
   c.seed = p.seed;
   c.prefill = true;
@@ -142,12 +143,14 @@ nlohmann::json describe(const FlowSetup& f) {
       {"diameters_per_scene_unit", f.scale},
       {"domain_diameters", {c.xmin, c.xmax, c.ymin, c.ymax}},
       {"domain_scene", {f.domain.xmin, f.domain.xmax, f.domain.ymin, f.domain.ymax}},
-      {"simulated_domain_scene", {f.sim_domain.xmin, f.sim_domain.xmax, f.sim_domain.ymin, f.sim_domain.ymax}},
+      {"simulated_domain_scene",
+       {f.sim_domain.xmin, f.sim_domain.xmax, f.sim_domain.ymin, f.sim_domain.ymax}},
       {"symmetric", c.symmetric},
       {"expected_particles", f.expected_particles},
       {"flow_through_time", f.flow_through_time},
       {"restitution", c.restitution},
       {"restitution_wall", c.restitution_wall},
+      {"elastic_impact_speed", c.elastic_below},
       {"gravity", {c.gravity.x, c.gravity.y}},
   };
 }

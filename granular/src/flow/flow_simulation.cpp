@@ -171,6 +171,7 @@ EngineConfig engine_config(const FlowConfig& c, std::vector<Segment>& body) {
   e.restitution = {c.restitution};
   e.gravity = c.gravity;
   e.tc = c.tc;
+  e.elastic_below = c.elastic_below * std::sqrt(c.temperature / c.mass);
   e.min_cell = c.cell > 0.0 ? c.cell : automatic_cell(c);
   if (c.comoving_cells) e.grid_speed = c.inflow_speed;
   if (c.symmetric) e.walls.push_back({{c.xmin, c.ymin}, {c.xmax, c.ymin}, 1.0});  // mirror

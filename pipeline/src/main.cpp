@@ -118,8 +118,9 @@ int main(int argc, char** argv) {
     int shape_seeds = pipeline::BowShapeOptions{}.seeds;
     calib
         ->add_option("--shape-seeds", shape_seeds,
-                     "with --fit-shapes: granular runs per swept e, at seeds sharing no replica")
-        ->check(CLI::PositiveNumber);
+                     "with --fit-shapes: granular runs per swept e, at seeds sharing no replica "
+                     "(at most 10: an 11th would reach the left-out checks' seeds)")
+        ->check(CLI::Range(1, 10));
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,

@@ -142,7 +142,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   if (!s.body || s.granular.restitution_given) return {};
   if (s.granular.elastic_impact_speed > 0.0)
     throw scene::InputError(
-        "scene " + s.name +
+        (s.source_file.empty() ? "scene " + s.name : s.source_file) +
         ": key 'granular.elastic_impact_speed': the calibration tables are fitted without "
         "elastic slow impacts, so no table gives this gas's restitution; set "
         "granular.restitution as well");

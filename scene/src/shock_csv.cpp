@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "scene/csv.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/units.hpp"
@@ -16,20 +17,6 @@ namespace {
 // Enough digits that a round trip through the file changes nothing that
 // matters (the fit's own uncertainty is far larger).
 constexpr int kDigits = 12;
-
-// Fields: split at commas, trimmed of spaces and of surrounding quotes.
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::string field;
-  std::istringstream is(line);
-  while (std::getline(is, field, ',')) {
-    const auto b = field.find_first_not_of(" \t\r\"");
-    const auto e = field.find_last_not_of(" \t\r\"");
-    out.push_back(b == std::string::npos ? "" : field.substr(b, e - b + 1));
-  }
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
 
 bool skipped(const std::string& line) {
   const auto first = line.find_first_not_of(" \t\r");

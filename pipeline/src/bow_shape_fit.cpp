@@ -47,32 +47,6 @@ SweepPoint standoff_ratio_point(double e, const nlohmann::json& granular_summary
   return {e, ok ? d / gas : kNaN, ci / gas};
 }
 
-// Runs of one e at several seeds: the inverse-variance weighted mean ratio
-// and its 95% half-width. A run whose bow-shock fit went astray (a stray
-// station pulling the vertex) says so with a wide interval, and so counts
-// little. Misfits are left out; none left: NaN.
-SweepPoint mean_point(double e, const std::vector<SweepPoint>& runs) {
-  double sw = 0, swx = 0;
-  for (const auto& p : runs)
-    if (std::isfinite(p.angle) && p.ci > 0) {
-      const double w = 1.0 / (p.ci * p.ci);
-      sw += w;
-      swx += w * p.angle;
-    }
-  if (!(sw > 0)) return {e, kNaN, kNaN};
-  return {e, swx / sw, 1.0 / std::sqrt(sw)};
-}
-
-// A body's k-th seed. A run's replicas take consecutive seeds from its own,
-// so seeds this far apart share no replica.
-constexpr std::uint64_t kSeedStride = 100;
-std::uint64_t nth_seed(std::uint64_t base, int k) {
-  return base + static_cast<std::uint64_t>(k) * kSeedStride;
-}
-std::string seed_dir(const std::string& dir, int k, std::uint64_t seed) {
-  return k == 0 ? dir : dir + "_seed" + std::to_string(seed);
-}
-
 struct Measured {
   nlohmann::json summary;
   double cpu = 0;

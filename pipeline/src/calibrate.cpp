@@ -37,6 +37,12 @@ constexpr double kTargetGamma = 1.4;
 // Case-study checks use the scene's seed plus this offset (the left-out
 // checks use kLeaveOneOutSeedOffset): the two checks see different replicas.
 constexpr std::uint64_t kCaseStudySeedOffset = 2000;
+// The crossing is read off a parabola through the swept e this close to it:
+// the bracket and one run on either side at the refinements' spacing
+// (0.005), never the run at e = 1 where angle(e) turns up too sharply for a
+// parabola (M2.5/14: 37.2 deg at 0.99, 47.2 at 1) unless the crossing lies
+// within 0.0105 of it.
+constexpr double kCrossingCurveWindow = 0.0105;
 // e is rounded like `pipeline run` rounds the table's value, so a case study
 // here runs at the e the pipeline would use.
 double rounded_restitution(double e) {
@@ -120,6 +126,8 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   if (o.restitutions.size() < 2)
     throw scene::InputError("calibrate: --e needs at least two values");
   if (o.refinements < 0) throw scene::InputError("calibrate: --refine must be 0 or more");
+  if (o.seeds < 1 || o.seeds > kMaxSweepSeeds)
+    throw scene::InputError("calibrate: --seeds must lie in 1.." + std::to_string(kMaxSweepSeeds));
   for (const double e : o.restitutions)
     if (!(e > 0 && e <= 1)) throw scene::InputError("calibrate: --e values must lie in (0, 1]");
   std::vector<std::string> case_paths;
@@ -136,8 +144,9 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   const auto bow_shock = bow_shock_kept_by_wedge_fit(table_path);
   scene::make_dirs(o.out_dir);
   const std::size_t n_runs =
-      training.size() *
-          (o.restitutions.size() + static_cast<std::size_t>(o.refinements) + (o.verify ? 1 : 0)) +
+      training.size() * ((o.restitutions.size() + static_cast<std::size_t>(o.refinements)) *
+                             static_cast<std::size_t>(o.seeds) +
+                         (o.verify ? 1 : 0)) +
       (o.verify ? cases.size() : 0);  // refinements may stop early: an upper bound
   scene::Progress progress("calibrate", static_cast<double>(n_runs), "runs");
   int done = 0;
@@ -162,38 +171,43 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     const double gas = gas_angle_deg(base, t.origin);
     std::vector<SweepPoint> pts;
     nlohmann::json sweep = nlohmann::json::array();
-    for (const double e : o.restitutions) {
-      const auto m =
-          measure(base, e, base.granular.seed, e_dir(o.out_dir, base.name, "e", e), o.np);
-      pts.push_back({e, m.angle, m.ci});
-      sweep.push_back({{"restitution", e},
-                       {"shock_angle_deg", m.angle},
-                       {"ci_deg", m.ci},
-                       {"cpu_seconds", m.cpu}});
-      sweep_cpu += m.cpu;
-      progress.update(++done, base.name + " e=" + std::to_string(e));
-    }
-    const auto by_e = [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; };
-    std::sort(pts.begin(), pts.end(), by_e);
+    // One e at every seed: the runs' mean is the sweep's point.
+    const auto measure_all = [&](double e, int refinement) {
+      std::vector<SweepPoint> runs;
+      nlohmann::json seeds = nlohmann::json::array();
+      for (int k = 0; k < o.seeds; ++k) {
+        const std::uint64_t seed = nth_seed(base.granular.seed, k);
+        const auto m =
+            measure(base, e, seed, seed_dir(e_dir(o.out_dir, base.name, "e", e), k, seed), o.np);
+        runs.push_back({e, m.angle, m.ci});
+        seeds.push_back({{"seed", seed},
+                         {"shock_angle_deg", json_number(m.angle)},
+                         {"ci_deg", json_number(m.ci)},
+                         {"cpu_seconds", m.cpu}});
+        sweep_cpu += m.cpu;
+        progress.update(++done, base.name + " e=" + std::to_string(e));
+      }
+      const SweepPoint p = mean_point(e, runs);
+      pts.push_back(p);
+      std::sort(pts.begin(), pts.end(),
+                [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
+      nlohmann::json row = {{"restitution", e},
+                            {"shock_angle_deg", json_number(p.angle)},
+                            {"ci_deg", json_number(p.ci)},
+                            {"runs", seeds}};
+      if (refinement > 0) row["refinement"] = refinement;
+      sweep.push_back(row);
+    };
+    for (const double e : o.restitutions) measure_all(e, 0);
     for (int r = 0; r < o.refinements; ++r) {  // sharpen the crossing (see next_restitution)
       const auto e = next_restitution(pts, gas);
       if (!e) break;
-      const auto m =
-          measure(base, *e, base.granular.seed, e_dir(o.out_dir, base.name, "e", *e), o.np);
-      pts.push_back({*e, m.angle, m.ci});
-      std::sort(pts.begin(), pts.end(), by_e);
-      sweep.push_back({{"restitution", *e},
-                       {"shock_angle_deg", m.angle},
-                       {"ci_deg", m.ci},
-                       {"cpu_seconds", m.cpu},
-                       {"refinement", r + 1}});
-      sweep_cpu += m.cpu;
-      progress.update(++done, base.name + " refined e=" + std::to_string(*e));
+      measure_all(*e, r + 1);
     }
     nlohmann::json row = {{"scene", base.name},         {"mach", mach},
                           {"angle_deg", theta},         {"gas_angle_deg", gas},
                           {"seed", base.granular.seed}, {"sweep", sweep}};
-    if (const auto cross = find_crossing(pts, gas)) {
+    if (const auto cross = find_crossing_by_curve(pts, gas, kCrossingCurveWindow)) {
       const double e = cross->e, e_ci = cross->e_ci;
       row["restitution"] = e;
       row["restitution_ci"] = e_ci;
@@ -308,6 +322,8 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       {"target_gamma", kTargetGamma},
       {"restitutions", o.restitutions},
       {"refinements", o.refinements},
+      {"seeds", o.seeds},
+      {"crossing_window", kCrossingCurveWindow},
       {"training", o.scenes.empty()
                        ? nlohmann::json{{"machs", o.machs}, {"angles_deg", o.angles_deg}}
                        : nlohmann::json{{"scenes", o.scenes}}},

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "pipeline/restitution_crossing.hpp"
 #include "scene/units.hpp"
 
 namespace pipeline {
@@ -74,10 +75,12 @@ std::string calibration_markdown(const nlohmann::json& c) {
   md << "Target: the gamma = " << general(num(c, "target_gamma"), 3)
      << " theta-beta-Mach shock angle. e swept over";
   for (const auto& e : c.at("restitutions")) md << " " << e.get<double>();
-  md << ", then " << c.value("refinements", 0)
-     << " run(s) bisecting the bracketing interval; crossing by linear interpolation between the "
-        "bracketing e "
-        "(95% half-width from the angle intervals through the local slope).\n\n";
+  md << ", then " << c.value("refinements", 0) << " run(s) bisecting the bracketing interval; "
+     << c.value("seeds", 1) << " run(s) per e at seeds " << kSeedStride
+     << " apart, their inverse-variance mean the point; crossing on a weighted parabola through "
+        "the points within "
+     << c.value("crossing_window", kNaN)
+     << " of the bracket's (95% half-width from the fit's covariance).\n\n";
 
   md << "| model | coefficients | sd of e about the fit | leave-one-out RMS of e (weighted) "
         "|\n|---|---|---|---|\n";
@@ -96,7 +99,8 @@ std::string calibration_markdown(const nlohmann::json& c) {
 
   md << "Leave-one-out: each training wedge refitted without it and run at that fit's e with seed "
         "granular.seed + "
-     << c.at("seed_offsets").value("leave_one_out", 0) << " (the sweeps used seed, seed + 1).\n\n";
+     << c.at("seed_offsets").value("leave_one_out", 0)
+     << " (one run; the sweeps used the seeds above).\n\n";
   md << "| point (M / theta) | crossing e +- 95% | e_fit (left out) | granular angle +- 95% (deg) "
         "| gas angle (deg) "
         "| error (deg) |\n|---|---|---|---|---|---|\n";

@@ -120,7 +120,12 @@ int main(int argc, char** argv) {
         ->add_option("--shape-seeds", shape_seeds,
                      "with --fit-shapes: granular runs per swept e, at seeds sharing no replica "
                      "(at most 10: an 11th would reach the left-out checks' seeds)")
-        ->check(CLI::Range(1, 10));
+        ->check(CLI::Range(1, pipeline::kMaxSweepSeeds));
+    calib
+        ->add_option("--seeds", co.seeds,
+                     "granular runs per swept e on each training wedge, at seeds sharing no "
+                     "replica, averaged (at most 10)")
+        ->check(CLI::Range(1, pipeline::kMaxSweepSeeds));
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");
     calib->add_option("--markdown", co.markdown_path,

@@ -1,5 +1,6 @@
 #include "pipeline/restitution_crossing.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
@@ -89,6 +90,81 @@ std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts
   if (std::abs(x) > window) return c;
   const double var = (sxx - 2.0 * x * sx + x * x * s) / det / (slope * slope) * scale;
   return Crossing{c->e + x, kZ95 * std::sqrt(var), c->e_low, c->e_high};
+}
+
+std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pts, double target,
+                                               double window) {
+  const auto c = find_crossing(pts, target);
+  if (!c) return std::nullopt;
+  std::vector<SweepPoint> near;
+  for (const auto& p : pts)
+    if (usable(p) && p.ci > 0 && std::abs(p.e - c->e) <= window) near.push_back(p);
+  const auto by_line = [&] { return find_crossing_by_line(pts, target, window); };
+  if (near.size() < 3) return by_line();
+  // Weighted normal equations of angle = a + b x + q x^2, x = e - c.e, in
+  // units of the runs' sd.
+  Eigen::Matrix3d n = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  for (const auto& p : near) {
+    const double sd = p.ci / kZ95, x = p.e - c->e;
+    const Eigen::Vector3d f(1.0, x, x * x);
+    n += f * f.transpose() / (sd * sd);
+    r += f * p.angle / (sd * sd);
+  }
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(n);
+  if (!lu.isInvertible()) return by_line();
+  const Eigen::Matrix3d cov = lu.inverse();
+  const Eigen::Vector3d k = cov * r;
+  const double a = k(0) - target, b = k(1), q = k(2);
+  // The root nearest the bracket's crossing: (-b + sqrt(b^2 - 4aq)) / 2q
+  // for b > 0, written so that q -> 0 leaves the line's root -a/b.
+  const double disc = b * b - 4.0 * a * q;
+  if (!(disc >= 0) || b == 0) return by_line();
+  const double x = -2.0 * a / (b + std::copysign(std::sqrt(disc), b));
+  const double slope = b + 2.0 * q * x;
+  double rise = 0;  // the bracketing pair's: the curve must run the same way
+  for (const auto& p : pts)
+    if (usable(p) && (p.e == c->e_low || p.e == c->e_high))
+      rise += p.e == c->e_high ? p.angle : -p.angle;
+  if (!(slope * rise > 0) || std::abs(x) > window) return by_line();
+  // Monotone across the bracket, where the root lies: the parabola's vertex
+  // outside it (runs that bend the curve over there are noise, not shape).
+  if (q != 0) {
+    const double vertex = c->e - b / (2.0 * q);
+    if (vertex >= c->e_low && vertex <= c->e_high) return by_line();
+  }
+  double chi2 = 0;
+  for (const auto& p : near) {
+    const double sd = p.ci / kZ95, dx = p.e - c->e;
+    const double res = p.angle - k(0) - b * dx - q * dx * dx;
+    chi2 += res * res / (sd * sd);
+  }
+  const double dof = static_cast<double>(near.size()) - 3.0;
+  const double scale = dof > 0 ? std::max(1.0, chi2 / dof) : 1.0;
+  // The root moves with the coefficients as -(1, x, x^2) / slope.
+  const Eigen::Vector3d g = Eigen::Vector3d(1.0, x, x * x) / slope;
+  const double var = g.dot(cov * g) * scale;
+  return Crossing{c->e + x, kZ95 * std::sqrt(var), c->e_low, c->e_high};
+}
+
+SweepPoint mean_point(double e, const std::vector<SweepPoint>& runs) {
+  double sw = 0, swx = 0;
+  for (const auto& p : runs)
+    if (usable(p) && p.ci > 0) {
+      const double w = 1.0 / (p.ci * p.ci);
+      sw += w;
+      swx += w * p.angle;
+    }
+  if (!(sw > 0)) return {e, std::nan(""), std::nan("")};
+  return {e, swx / sw, 1.0 / std::sqrt(sw)};
+}
+
+std::uint64_t nth_seed(std::uint64_t base, int k) {
+  return base + static_cast<std::uint64_t>(k) * kSeedStride;
+}
+
+std::string seed_dir(const std::string& dir, int k, std::uint64_t seed) {
+  return k == 0 ? dir : dir + "_seed" + std::to_string(seed);
 }
 
 std::optional<double> next_restitution(const std::vector<SweepPoint>& pts, double target) {

@@ -83,3 +83,57 @@ TEST(RestitutionCrossing, ALineThroughSeveralRunsOutvotesAStrayOne) {
   EXPECT_NEAR(pipeline::find_crossing_by_line(two, 1.0, 0.0075)->e,
               pipeline::find_crossing(two, 1.0)->e, kTolerance);
 }
+
+// A wedge's sweep near its crossing: angle(e) convex, as measured
+// (M4.5/14: 24.1, 25.2, 26.5 deg at 0.97, 0.975, 0.98). A chord across the
+// bracket reads the crossing low; the parabola through the runs near it
+// recovers it, with an interval from the runs' own.
+TEST(RestitutionCrossing, AParabolaFollowsTheConvexAngleThatAChordCuts) {
+  const double e0 = 0.9732, target = 24.48;
+  const auto angle = [&](double e) {
+    const double x = e - e0;
+    return target + 250.0 * x + 16000.0 * x * x;
+  };
+  std::vector<SweepPoint> pts;
+  for (const double e : {0.96, 0.965, 0.97, 0.975, 0.98, 1.0}) pts.push_back({e, angle(e), 0.2});
+  const auto chord = pipeline::find_crossing(pts, target);
+  const auto curve = pipeline::find_crossing_by_curve(pts, target, 0.0105);
+  ASSERT_TRUE(chord && curve);
+  EXPECT_LT(chord->e, e0 - 1e-4);  // the chord's bias, about 0.1 deg of angle
+  EXPECT_NEAR(curve->e, e0, 1e-9);
+  EXPECT_GT(curve->e_ci, 0.0);
+  EXPECT_LT(curve->e_ci, 0.002);
+  EXPECT_EQ(curve->e_low, chord->e_low);
+  EXPECT_EQ(curve->e_high, chord->e_high);
+
+  // Noisy runs (+-1 sd, alternating): the crossing stays within its interval.
+  auto noisy = pts;
+  for (std::size_t i = 0; i < noisy.size(); ++i) noisy[i].angle += (i % 2 ? 0.1 : -0.1);
+  const auto n = pipeline::find_crossing_by_curve(noisy, target, 0.0105);
+  ASSERT_TRUE(n);
+  EXPECT_LT(std::abs(n->e - e0), n->e_ci);
+}
+
+TEST(RestitutionCrossing, TheParabolaGivesWayToTheLineWhereItCannotServe) {
+  const auto line = [](double e) { return 20.0 + 300.0 * (e - 0.97); };
+  // Two runs in the window: the bracket's interpolation.
+  const std::vector<SweepPoint> two{{0.96, line(0.96), 0.2}, {0.98, line(0.98), 0.2}};
+  EXPECT_NEAR(pipeline::find_crossing_by_curve(two, 20.0, 0.0105)->e,
+              pipeline::find_crossing(two, 20.0)->e, kTolerance);
+  // Outer runs that bend the parabola over between the bracketing runs
+  // (its vertex at 0.9725): the line through the same runs instead.
+  const std::vector<SweepPoint> bent{
+      {0.965, 22.0, 0.2}, {0.97, 19.9, 0.2}, {0.975, 20.1, 0.2}, {0.98, 22.0, 0.2}};
+  EXPECT_NEAR(pipeline::find_crossing_by_curve(bent, 20.0, 0.0105)->e,
+              pipeline::find_crossing_by_line(bent, 20.0, 0.0105)->e, kTolerance);
+}
+
+TEST(RestitutionCrossing, TheMeanOfSeedsWeighsTheRunsByTheirIntervals) {
+  const auto m = pipeline::mean_point(0.97, {{0.97, 20.0, 0.2}, {0.97, 21.0, 0.4}});
+  EXPECT_NEAR(m.angle, (20.0 / 0.04 + 21.0 / 0.16) / (1 / 0.04 + 1 / 0.16), kTolerance);
+  EXPECT_NEAR(m.ci, 1.0 / std::sqrt(1 / 0.04 + 1 / 0.16), kTolerance);
+  // A misfit (no angle, or an interval too wide to use) does not count.
+  const auto u = pipeline::mean_point(0.97, {{0.97, 20.0, 0.2}, {0.97, kNaN, kNaN}, {0.97, 5, 40}});
+  EXPECT_NEAR(u.angle, 20.0, kTolerance);
+  EXPECT_TRUE(std::isnan(pipeline::mean_point(0.97, {{0.97, kNaN, kNaN}}).angle));
+}

@@ -27,6 +27,9 @@ inline double quantised_restitution(double e) {
 // sweeps used seed .. seed + replicas - 1, so an offset above the replica
 // count gives replicas no sweep has seen.
 inline constexpr std::uint64_t kLeaveOneOutSeedOffset = 1000;
+// Seeds per swept e at most, kSeedStride (restitution_crossing.hpp) apart:
+// an 11th would reach the left-out checks' seeds.
+inline constexpr int kMaxSweepSeeds = 10;
 
 struct CalibrationEntry {
   double mach = 0, angle_deg = 0;

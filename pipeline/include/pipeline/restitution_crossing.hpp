@@ -1,7 +1,9 @@
 #pragma once
 // Where the granular shock angle, swept over e, crosses the gas angle; and
 // which e to run next to sharpen that crossing.
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace pipeline {
@@ -43,6 +45,31 @@ std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double
 // outside the window.
 std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts, double target,
                                               double window);
+
+// Where a parabola through the usable runs within `window` of
+// find_crossing's e meets `target`: angle(e) is convex below e = 1, so a
+// chord or a line across the crossing puts it too low (M4.5/14: 24.1, 25.2
+// and 26.5 deg at e = 0.97, 0.975, 0.98, a chord over 0.01 reads 0.2 deg
+// high at its middle). Weights 1/ci^2; the 95% half-width from the fit's
+// covariance through the root, scaled up by the residuals where there are
+// more runs than coefficients and they scatter more than their intervals
+// say. find_crossing_by_line's answer with fewer than three runs, or where
+// the parabola turns between the bracketing runs, runs against them or
+// meets `target` outside the window.
+std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pts, double target,
+                                               double window);
+
+// Runs of one e at several seeds: the inverse-variance weighted mean of the
+// usable ones and its 95% half-width (a run whose fit went astray says so
+// with a wide interval, and so counts little). None usable: NaN.
+SweepPoint mean_point(double e, const std::vector<SweepPoint>& runs);
+
+// A training body's k-th seed (k = 0: its own). A run's replicas take
+// consecutive seeds from its own, so seeds this far apart share no replica.
+inline constexpr std::uint64_t kSeedStride = 100;
+std::uint64_t nth_seed(std::uint64_t base, int k);
+// The cache directory of the k-th seed's run beside `dir`, the first seed's.
+std::string seed_dir(const std::string& dir, int k, std::uint64_t seed);
 
 // The next e to run: the midpoint of the bracketing interval (a chord
 // across the convex angle(e) puts the crossing too low); without a crossing,

@@ -74,24 +74,22 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
   std::vector<SweepPoint> pts;
   nlohmann::json sweep = nlohmann::json::array();
   const auto measure = [&](double e) {
-    std::vector<SweepPoint> runs;
-    nlohmann::json seeds = nlohmann::json::array();
-    for (int k = 0; k < o.seeds; ++k) {
-      const std::uint64_t seed = nth_seed(s.granular.seed, k);
-      const auto m =
-          run_at(s, e, seed, seed_dir(e_dir(o.cache_dir, s.name, "e", e), k, seed), o.np);
-      cpu += m.cpu;
-      runs.push_back(standoff_ratio_point(e, m.summary, gas));
-      seeds.push_back({{"seed", seed},
-                       {"standoff", json_number(number_or_nan(m.summary, "standoff"))},
-                       {"standoff_ci", json_number(number_or_nan(m.summary, "standoff_ci"))}});
-    }
-    const SweepPoint p = mean_point(e, runs);
-    pts.push_back(p);
-    std::sort(pts.begin(), pts.end(),
-              [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
+    const auto runs = run_at_seeds(
+        e, o.seeds, s.granular.seed, e_dir(o.cache_dir, s.name, "e", e), pts,
+        [&](std::uint64_t seed, const std::string& dir) {
+          const auto m = run_at(s, e, seed, dir, o.np);
+          cpu += m.cpu;
+          return std::pair{
+              standoff_ratio_point(e, m.summary, gas),
+              nlohmann::json{
+                  {"seed", seed},
+                  {"standoff", json_number(number_or_nan(m.summary, "standoff"))},
+                  {"standoff_ci", json_number(number_or_nan(m.summary, "standoff_ci"))}}};
+        });
+    const SweepPoint p =
+        *std::find_if(pts.begin(), pts.end(), [e](const SweepPoint& q) { return q.e == e; });
     sweep.push_back({{"restitution", e},
-                     {"runs", seeds},
+                     {"runs", runs},
                      {"standoff_ratio", json_number(p.angle)},
                      {"standoff_ratio_ci", json_number(p.ci)}});
     scene::log_line("calibrate: " + s.name + " e = " + std::to_string(e) + ": standoff " +

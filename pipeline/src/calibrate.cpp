@@ -173,28 +173,24 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
     nlohmann::json sweep = nlohmann::json::array();
     // One e at every seed: the runs' mean is the sweep's point.
     const auto measure_all = [&](double e, int refinement) {
-      std::vector<SweepPoint> runs;
-      nlohmann::json seeds = nlohmann::json::array();
-      for (int k = 0; k < o.seeds; ++k) {
-        const std::uint64_t seed = nth_seed(base.granular.seed, k);
-        const auto m =
-            measure(base, e, seed, seed_dir(e_dir(o.out_dir, base.name, "e", e), k, seed), o.np);
-        runs.push_back({e, m.angle, m.ci});
-        seeds.push_back({{"seed", seed},
-                         {"shock_angle_deg", json_number(m.angle)},
-                         {"ci_deg", json_number(m.ci)},
-                         {"cpu_seconds", m.cpu}});
-        sweep_cpu += m.cpu;
-        progress.update(++done, base.name + " e=" + std::to_string(e));
-      }
-      const SweepPoint p = mean_point(e, runs);
-      pts.push_back(p);
-      std::sort(pts.begin(), pts.end(),
-                [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
+      const auto runs =
+          run_at_seeds(e, o.seeds, base.granular.seed, e_dir(o.out_dir, base.name, "e", e), pts,
+                       [&](std::uint64_t seed, const std::string& dir) {
+                         const auto m = measure(base, e, seed, dir, o.np);
+                         sweep_cpu += m.cpu;
+                         progress.update(++done, base.name + " e=" + std::to_string(e));
+                         return std::pair{SweepPoint{e, m.angle, m.ci},
+                                          nlohmann::json{{"seed", seed},
+                                                         {"shock_angle_deg", json_number(m.angle)},
+                                                         {"ci_deg", json_number(m.ci)},
+                                                         {"cpu_seconds", m.cpu}}};
+                       });
+      const auto p =
+          std::find_if(pts.begin(), pts.end(), [e](const SweepPoint& q) { return q.e == e; });
       nlohmann::json row = {{"restitution", e},
-                            {"shock_angle_deg", json_number(p.angle)},
-                            {"ci_deg", json_number(p.ci)},
-                            {"runs", seeds}};
+                            {"shock_angle_deg", json_number(p->angle)},
+                            {"ci_deg", json_number(p->ci)},
+                            {"runs", runs}};
       if (refinement > 0) row["refinement"] = refinement;
       sweep.push_back(row);
     };

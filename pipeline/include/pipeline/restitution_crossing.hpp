@@ -1,7 +1,9 @@
 #pragma once
 // Where the granular shock angle, swept over e, crosses the gas angle; and
 // which e to run next to sharpen that crossing.
+#include <algorithm>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -70,6 +72,27 @@ inline constexpr std::uint64_t kSeedStride = 100;
 std::uint64_t nth_seed(std::uint64_t base, int k);
 // The cache directory of the k-th seed's run beside `dir`, the first seed's.
 std::string seed_dir(const std::string& dir, int k, std::uint64_t seed);
+
+// One swept e at `seeds` seeds (nth_seed of `base_seed`, each run cached in
+// seed_dir of `dir`): `run(seed, dir)` makes one run and returns its point
+// and its JSON record. Their mean_point goes into `pts` (kept sorted by e);
+// the records are returned.
+template <class Run>
+nlohmann::json run_at_seeds(double e, int seeds, std::uint64_t base_seed, const std::string& dir,
+                            std::vector<SweepPoint>& pts, Run run) {
+  std::vector<SweepPoint> runs;
+  nlohmann::json records = nlohmann::json::array();
+  for (int k = 0; k < seeds; ++k) {
+    const std::uint64_t seed = nth_seed(base_seed, k);
+    auto [point, record] = run(seed, seed_dir(dir, k, seed));
+    runs.push_back(point);
+    records.push_back(std::move(record));
+  }
+  pts.push_back(mean_point(e, runs));
+  std::sort(pts.begin(), pts.end(),
+            [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
+  return records;
+}
 
 // The next e to run: the midpoint of the bracketing interval (a chord
 // across the convex angle(e) puts the crossing too low); without a crossing,

@@ -80,7 +80,8 @@ std::string calibration_markdown(const nlohmann::json& c) {
      << " apart, their inverse-variance mean the point; crossing on a weighted parabola through "
         "the points within "
      << c.value("crossing_window", kNaN)
-     << " of the bracket's (95% half-width from the fit's covariance).\n\n";
+     << " of the bracket's where there are three, else interpolated across the bracket (95% "
+        "half-width from the fit's covariance, or the bracket's intervals over its slope).\n\n";
 
   md << "| model | coefficients | sd of e about the fit | leave-one-out RMS of e (weighted) "
         "|\n|---|---|---|---|\n";

@@ -10,6 +10,8 @@
 # their Mach number and deflection, every other key at its default as in
 # pipeline/cases) and wedges outside the training ranges.
 #   bench/calibration_oos/angle_check.sh TABLE OUTDIR SEED...
+# With EXTRA='YAML LINES' in the environment every scene gets those lines too
+# (e.g. EXTRA='shockfit: {field: v}' for a table calibrated on that field).
 # Run from the repository root after the build.
 set -euo pipefail
 table=$1; out=$2; shift 2
@@ -35,6 +37,7 @@ while read -r m a in; do
   d="$out/$name"; mkdir -p "$d"
   printf 'name: %s\nbody: {kind: wedge, angle_deg: %s, length: 1.0}\nfreestream: {mach: %s}\n' \
     "$name" "$a" "$m" > "$d/scene.yaml"
+  [ -z "${EXTRA:-}" ] || printf '%s\n' "$EXTRA" >> "$d/scene.yaml"
   CI=1 "$bin/pipeline" predict "$d/scene.yaml" --predictor correlation --out "$d/gas" \
     > /dev/null 2> "$d/gas_err.txt"
   gas=$(value "$d/gas/summary.json" shock_angle_deg)

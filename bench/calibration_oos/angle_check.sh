@@ -11,7 +11,8 @@
 # pipeline/cases) and wedges outside the training ranges.
 #   bench/calibration_oos/angle_check.sh TABLE OUTDIR SEED...
 # With EXTRA='YAML LINES' in the environment every scene gets those lines too
-# (e.g. EXTRA='shockfit: {field: v}' for a table calibrated on that field).
+# (e.g. EXTRA='shockfit: {field: v}' for a table calibrated on that field);
+# WEDGES='MACH ANGLE CLASS' lines replace the wedge list below.
 # Run from the repository root after the build.
 set -euo pipefail
 table=$1; out=$2; shift 2
@@ -20,7 +21,7 @@ mkdir -p "$out"
 value() { grep -o "\"$2\": [^,}]*" "$1" | head -1 | sed 's/.*: //'; }
 # mach angle class: 1 inside the training ranges (Mach 2.5-6, 8-20 deg),
 # 2 a case study, 0 outside the training ranges
-wedges="2.8 11 1
+default_wedges="2.8 11 1
 3.2 18 1
 4.5 12 1
 5.0 10 1
@@ -31,6 +32,7 @@ wedges="2.8 11 1
 2.2 9 0
 3.8 6 0
 4.0 22 0"
+wedges=${WEDGES:-$default_wedges}
 : > "$out/runs.txt"
 while read -r m a in; do
   name="oos_M${m}_${a}"

@@ -86,10 +86,9 @@ std::optional<Crossed> sweep_body(const BowTrainingRun& run, const CalibrationTa
                   {"standoff", json_number(number_or_nan(m.summary, "standoff"))},
                   {"standoff_ci", json_number(number_or_nan(m.summary, "standoff_ci"))}}};
         });
-    const SweepPoint p =
-        *std::find_if(pts.begin(), pts.end(), [e](const SweepPoint& q) { return q.e == e; });
+    const SweepPoint& p = runs.mean;
     sweep.push_back({{"restitution", e},
-                     {"runs", runs},
+                     {"runs", runs.records},
                      {"standoff_ratio", json_number(p.angle)},
                      {"standoff_ratio_ci", json_number(p.ci)}});
     scene::log_line("calibrate: " + s.name + " e = " + std::to_string(e) + ": standoff " +

@@ -185,12 +185,10 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
                                                          {"ci_deg", json_number(m.ci)},
                                                          {"cpu_seconds", m.cpu}}};
                        });
-      const auto p =
-          std::find_if(pts.begin(), pts.end(), [e](const SweepPoint& q) { return q.e == e; });
       nlohmann::json row = {{"restitution", e},
-                            {"shock_angle_deg", json_number(p->angle)},
-                            {"ci_deg", json_number(p->ci)},
-                            {"runs", runs}};
+                            {"shock_angle_deg", json_number(runs.mean.angle)},
+                            {"ci_deg", json_number(runs.mean.ci)},
+                            {"runs", runs.records}};
       if (refinement > 0) row["refinement"] = refinement;
       sweep.push_back(row);
     };

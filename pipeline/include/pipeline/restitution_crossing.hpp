@@ -75,23 +75,28 @@ std::string seed_dir(const std::string& dir, int k, std::uint64_t seed);
 
 // One swept e at `seeds` seeds (nth_seed of `base_seed`, each run cached in
 // seed_dir of `dir`): `run(seed, dir)` makes one run and returns its point
-// and its JSON record. Their mean_point goes into `pts` (kept sorted by e);
-// the records are returned.
+// and its JSON record. Their mean_point goes into `pts` (kept sorted by e)
+// and is returned with the records.
+struct SeedRuns {
+  SweepPoint mean;
+  nlohmann::json records;
+};
 template <class Run>
-nlohmann::json run_at_seeds(double e, int seeds, std::uint64_t base_seed, const std::string& dir,
-                            std::vector<SweepPoint>& pts, Run run) {
+SeedRuns run_at_seeds(double e, int seeds, std::uint64_t base_seed, const std::string& dir,
+                      std::vector<SweepPoint>& pts, Run run) {
   std::vector<SweepPoint> runs;
-  nlohmann::json records = nlohmann::json::array();
+  SeedRuns out{{}, nlohmann::json::array()};
   for (int k = 0; k < seeds; ++k) {
     const std::uint64_t seed = nth_seed(base_seed, k);
     auto [point, record] = run(seed, seed_dir(dir, k, seed));
     runs.push_back(point);
-    records.push_back(std::move(record));
+    out.records.push_back(std::move(record));
   }
-  pts.push_back(mean_point(e, runs));
+  out.mean = mean_point(e, runs);
+  pts.push_back(out.mean);
   std::sort(pts.begin(), pts.end(),
             [](const SweepPoint& a, const SweepPoint& b) { return a.e < b.e; });
-  return records;
+  return out;
 }
 
 // The next e to run: the midpoint of the bracketing interval (a chord

@@ -13,7 +13,9 @@ scene=$1; gas=$2; table=$3; out=$4; shift 4
 bin=${BIN:-build/bin}
 mkdir -p "$out"
 value() { grep -o "\"$2\": [^,}]*" "$1" | head -1 | sed 's/.*: //'; }
-: > "$out/runs.txt"
+# Written aside and moved in at the end: a stopped or failed rerun leaves the
+# last finished runs.txt / summary.txt in place.
+: > "$out/runs.txt.part"
 for s in "$@"; do
   d="$out/seed$s"; mkdir -p "$d"
   extra=""; [ -z "${E:-}" ] || extra=", restitution: $E"
@@ -24,7 +26,9 @@ for s in "$@"; do
   e=$(value "$d/p/granular/summary.json" restitution)
   st=$(value "$sf" standoff); ci=$(value "$sf" standoff_ci)
   echo "$s $e $st $ci $(awk -v a="$st" -v g="$gas" 'BEGIN { printf "%+.4f", a / g - 1 }')" \
-    | tee -a "$out/runs.txt"
+    | tee -a "$out/runs.txt.part"
 done
 awk -v g="$gas" '{ n++; s += $3 } END { printf "%d seeds: mean standoff %.4f against %.4f: %+.2f%%\n", n, s / n, g, 100 * (s / n / g - 1) }' \
-  "$out/runs.txt" | tee "$out/summary.txt"
+  "$out/runs.txt.part" | tee "$out/summary.txt.part"
+mv "$out/runs.txt.part" "$out/runs.txt"
+mv "$out/summary.txt.part" "$out/summary.txt"

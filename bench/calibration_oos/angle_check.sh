@@ -33,7 +33,9 @@ default_wedges="2.8 11 1
 3.8 6 0
 4.0 22 0"
 wedges=${WEDGES:-$default_wedges}
-: > "$out/runs.txt"
+# Written aside and moved in at the end: a stopped or failed rerun leaves the
+# last finished runs.txt / summary.txt in place.
+: > "$out/runs.txt.part"
 while read -r m a in; do
   name="oos_M${m}_${a}"
   d="$out/$name"; mkdir -p "$d"
@@ -51,7 +53,7 @@ while read -r m a in; do
     ang=$(value "$d/seed$s/summary.json" shock_angle_deg)
     ci=$(value "$d/seed$s/summary.json" shock_angle_ci_deg)
     echo "$name $s $e $ang $ci $gas $in" | awk '{ printf "%s %s %s %.2f %.2f %.2f %+.2f %s\n", $1, $2, $3, $4, $5, $6, $4 - $6, $7 }' \
-      | tee -a "$out/runs.txt"
+      | tee -a "$out/runs.txt.part"
   done
 done <<< "$wedges"
 awk '{ k = $8; n[k]++; s[k] += $7; q[k] += $7 * $7; if ($7 * $7 > mx[k] * mx[k]) mx[k] = $7 }
@@ -59,4 +61,6 @@ awk '{ k = $8; n[k]++; s[k] += $7; q[k] += $7 * $7; if ($7 * $7 > mx[k] * mx[k])
            for (k = 1; k <= 3; k++) { c = k % 3; if (n[c])
              printf "%s: %d runs, RMS %.2f deg, max |error| %.2f, mean %+.2f\n",
                     label[c + 1], n[c], sqrt(q[c] / n[c]), (mx[c] < 0 ? -mx[c] : mx[c]), s[c] / n[c] } }' \
-  "$out/runs.txt" | tee "$out/summary.txt"
+  "$out/runs.txt.part" | tee "$out/summary.txt.part"
+mv "$out/runs.txt.part" "$out/runs.txt"
+mv "$out/summary.txt.part" "$out/summary.txt"

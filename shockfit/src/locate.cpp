@@ -181,6 +181,8 @@ nlohmann::json ShockResult::summary() const {
   j["interval_method"] = interval_method;
   j["interval_groups"] =
       interval_groups > 0 ? nlohmann::json(interval_groups) : nlohmann::json(nullptr);
+  j["interval_group_values"] = interval_group_values;
+  j["group_own_angles_deg"] = group_own_angles;
   return j;
 }
 

@@ -89,3 +89,23 @@ TEST(GroupInterval, TooFewGroupsFindingTheShockKeepTheBootstrap) {
   EXPECT_EQ(r.interval_groups, 0);
   EXPECT_DOUBLE_EQ(r.shock_angle_ci_deg, bootstrap);
 }
+
+TEST(GroupInterval, AttachedGroupsAlsoFindTheirShockOnTheirOwn) {
+  // Every group's shock 0.3 deg steeper than the pooled fields': each
+  // group's own fit finds it there and is listed; the angle stays the pooled
+  // fit's, and eight equal groups leave a near-zero interval.
+  const scene::Scene s = wedge_scene();
+  const double beta = *scene::oblique_shock_beta(3.0, 10.0 * kDeg, 1.4);
+  shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
+  const double pooled = r.shock_angle_deg;
+  std::vector<scene::Lattice> groups(8, shock_at(s, beta + 0.3 * kDeg));
+  shockfit::apply_group_interval(s, groups, r);
+  ASSERT_EQ(r.interval_method, "groups");
+  EXPECT_DOUBLE_EQ(r.shock_angle_deg, pooled);
+  ASSERT_EQ(r.group_own_angles.size(), 8u);
+  // The locator resolves each angle to a few hundredths of a degree here.
+  constexpr double kAngleTolDeg = 0.05;
+  for (const double a : r.group_own_angles) EXPECT_NEAR(a, pooled + 0.3, kAngleTolDeg);
+  EXPECT_LT(r.shock_angle_ci_deg, kAngleTolDeg);
+  EXPECT_EQ(r.summary()["group_own_angles_deg"].size(), 8u);
+}

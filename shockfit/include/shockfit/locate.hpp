@@ -44,6 +44,13 @@ struct ShockResult {
   // (group_interval.hpp).
   std::string interval_method = "bootstrap";
   int interval_groups = 0;
+  // Each group's angle (deg) or standoff (body lengths), in the order of the
+  // groups file: replica by replica. Empty with the bootstrap.
+  std::vector<double> interval_group_values;
+  // Attached with groups: each group's angle found from scratch on its
+  // fields alone (its own stations and tests; NaN where it finds no attached
+  // shock), whose spread bounds the interval from below (group_interval.hpp).
+  std::vector<double> group_own_angles;
   nlohmann::json candidates = nlohmann::json::object();  // per field tried: shock, uncertainty
 
   int accepted_count() const;

@@ -24,8 +24,8 @@ namespace {
 
 // Groups whose own angle lands this many robust sigmas from the groups'
 // median are left out of the interval: on an eighth of the data a weak jump
-// is sometimes found at another feature (a wedge at Mach 2.2 or 6 deg: 0 or
-// 31 deg among seven near 19).
+// is sometimes found at another feature (a 6 deg wedge at Mach 3.8: 0 and
+// 31 deg among groups near 19).
 constexpr double kGroupOutlierSigmas = 3.5;
 
 // A group's attached shock found from scratch on its fields alone, with the
@@ -59,10 +59,6 @@ std::vector<double> without_outliers(const std::vector<double>& values) {
   return kept;
 }
 
-}  // namespace
-
-namespace {
-
 struct GroupSpread {
   int used = 0;
   double half = kNaN;  // Student's t times the values' standard error
@@ -85,13 +81,10 @@ std::vector<double> finite_of(const std::vector<double>& values) {
   return out;
 }
 
-void set_angle(ShockResult& r, double angle, double half) {
-  r.shock_angle_deg = angle;
-  const double a = angle * scene::kDeg;
-  r.line_dir = {std::cos(a), std::sin(a)};
+void set_angle_interval(ShockResult& r, double half) {
   r.shock_angle_ci_deg = half;
-  r.shock_angle_lo_deg = angle - half;
-  r.shock_angle_hi_deg = angle + half;
+  r.shock_angle_lo_deg = r.shock_angle_deg - half;
+  r.shock_angle_hi_deg = r.shock_angle_deg + half;
 }
 
 }  // namespace
@@ -126,7 +119,7 @@ void apply_group_interval(const scene::Scene& s, const std::vector<scene::Lattic
   // outliers left out, bounds the interval from below.
   for (const scene::Lattice& lat : groups) r.group_own_angles.push_back(own_group_angle(s, lat, r));
   const GroupSpread own = spread_of(without_outliers(finite_of(r.group_own_angles)));
-  set_angle(r, r.shock_angle_deg, own.used > 0 ? std::max(sp.half, own.half) : sp.half);
+  set_angle_interval(r, own.used > 0 ? std::max(sp.half, own.half) : sp.half);
 }
 
 }  // namespace shockfit

@@ -34,6 +34,8 @@ std::vector<double> basis(RestitutionModel m, double mach, double angle_deg) {
       return {1.0, std::log(mach), angle_deg};
     case RestitutionModel::log_mach_inverse_angle:
       return {1.0, std::log(mach), 1.0 / angle_deg};
+    case RestitutionModel::log_mach2_inverse_angle:
+      return {1.0, std::log(mach), std::log(mach) * std::log(mach), 1.0 / angle_deg};
   }
   return {};
 }
@@ -116,6 +118,8 @@ std::string model_key(RestitutionModel m) {
       return "log_mach_angle";
     case RestitutionModel::log_mach_inverse_angle:
       return "log_mach_inverse_angle";
+    case RestitutionModel::log_mach2_inverse_angle:
+      return "log_mach2_inverse_angle";
   }
   return "";
 }
@@ -134,6 +138,8 @@ std::string model_formula(RestitutionModel m) {
       return "e = c0 + c1*ln(M) + c2*theta_deg";
     case RestitutionModel::log_mach_inverse_angle:
       return "e = c0 + c1*ln(M) + c2/theta_deg";
+    case RestitutionModel::log_mach2_inverse_angle:
+      return "e = c0 + c1*ln(M) + c2*ln(M)^2 + c3/theta_deg";
   }
   return "";
 }
@@ -155,13 +161,16 @@ std::size_t parameter_count(RestitutionModel m) {
     case RestitutionModel::log_mach_angle:
     case RestitutionModel::log_mach_inverse_angle:
       return 3;
+    case RestitutionModel::log_mach2_inverse_angle:
+      return 4;
   }
   return 0;
 }
 
 bool uses_angle(RestitutionModel m) {
   return m == RestitutionModel::inverse_mach2_angle || m == RestitutionModel::log_mach_angle ||
-         m == RestitutionModel::log_mach_inverse_angle;
+         m == RestitutionModel::log_mach_inverse_angle ||
+         m == RestitutionModel::log_mach2_inverse_angle;
 }
 
 double RestitutionFit::evaluate(double mach, double angle_deg) const {

@@ -79,7 +79,7 @@ TEST(RestitutionFit, LeaveOneOutPicksTheRightModel) {
   const auto c1 = pipeline::choose_restitution_model(mach_only);
   ASSERT_TRUE(c1.has_value());
   EXPECT_EQ(c1->fit().model, RestitutionModel::inverse_mach2);
-  EXPECT_EQ(c1->candidates.size(), 6u);
+  EXPECT_EQ(c1->candidates.size(), std::size(pipeline::kRestitutionModels));
 
   // A real angle dependence (0.02 over 8-20 deg) well above the same noise.
   const auto with_angle =
@@ -173,4 +173,29 @@ TEST(CalibrationTraining, DetachedWedgesAreLeftOut) {
   ASSERT_TRUE(s.body.has_value());
   EXPECT_DOUBLE_EQ(s.freestream.mach, 1.5);
   EXPECT_FALSE(s.granular.restitution_given);  // granular settings at their defaults
+}
+
+TEST(RestitutionFit, ACurvatureInMachIsRecoveredAndChosenOnASevenMachGrid) {
+  // Crossings bent in ln M (as the 34-wedge grid's are) on seven Mach numbers
+  // 2.5-6 and five deflections 8-20 deg, noise 0.0002: (ln M)^2 + 1/theta
+  // recovers the law and wins out of sample over the straight ln M.
+  const auto law = [](double m, double a) {
+    const double l = std::log(m);
+    return 0.99 + 0.003 * l - 0.012 * l * l + 0.095 / a;
+  };
+  std::vector<RestitutionPoint> pts;
+  int i = 0;
+  for (const double m : {2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0})
+    for (const double a : {8.0, 11.0, 14.0, 17.0, 20.0})
+      pts.push_back({m, a, law(m, a) + (i++ % 2 == 0 ? 1.0 : -1.0) * 0.0002, 0.001});
+  const auto c = pipeline::choose_restitution_model(pts);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->fit().model, RestitutionModel::log_mach2_inverse_angle);
+  constexpr double kNoisyCoefficientTolerance = 2e-3;
+  EXPECT_NEAR(c->fit().coefficients[2], -0.012, kNoisyCoefficientTolerance);
+  EXPECT_NEAR(c->fit().evaluate(3.0, 10.0), law(3.0, 10.0), 3e-4);
+  EXPECT_EQ(pipeline::model_from_key("log_mach2_inverse_angle"),
+            RestitutionModel::log_mach2_inverse_angle);
+  EXPECT_EQ(pipeline::parameter_count(RestitutionModel::log_mach2_inverse_angle), 4u);
+  EXPECT_TRUE(pipeline::uses_angle(RestitutionModel::log_mach2_inverse_angle));
 }

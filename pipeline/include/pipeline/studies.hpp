@@ -32,10 +32,13 @@ struct CalibrateOptions {
   std::string out_dir;
   // Training wedges. Default: generated on the machs x angles_deg grid
   // (attached at gamma 1.4, case studies left out) with every other scene key
-  // at its default, as the case studies have them.
+  // at its default, as the case studies have them. Seven Machs x five angles:
+  // on the coarser 4 x 3 grid the fitted e missed a bend in ln M that left
+  // unseen wedges 0.46 deg RMS off against 0.26 with this one (about 2.3x the
+  // sweep time; docs/calibration.md, "A denser training grid").
   std::vector<std::string> scenes;
-  std::vector<double> machs{2.5, 3.5, 4.5, 6.0};
-  std::vector<double> angles_deg{8.0, 14.0, 20.0};
+  std::vector<double> machs{2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0};
+  std::vector<double> angles_deg{8.0, 11.0, 14.0, 17.0, 20.0};
   // The crossings lie near 0.96-0.99, where angle(e) is strongly convex
   // (M2.5/14: 32 deg at 0.98, 49 at 1): the sweep is coarse and then
   // `refinements` runs bisect the bracketing interval (or extend the sweep

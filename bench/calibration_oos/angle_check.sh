@@ -12,7 +12,8 @@
 #   bench/calibration_oos/angle_check.sh TABLE OUTDIR SEED...
 # With EXTRA='YAML LINES' in the environment every scene gets those lines too
 # (e.g. EXTRA='shockfit: {field: v}' for a table calibrated on that field);
-# WEDGES='MACH ANGLE CLASS' lines replace the wedge list below.
+# WEDGES='MACH ANGLE CLASS' lines replace the wedge list below; GRANULAR='KEY: VALUE, ...'
+# joins the seed in each run's granular block (e.g. GRANULAR='averaging: 8').
 # Run from the repository root after the build.
 set -euo pipefail
 table=$1; out=$2; shift 2
@@ -46,7 +47,7 @@ while read -r m a in; do
     > /dev/null 2> "$d/gas_err.txt"
   gas=$(value "$d/gas/summary.json" shock_angle_deg)
   for s in "$@"; do
-    { cat "$d/scene.yaml"; printf 'granular: {seed: %s}\n' "$s"; } > "$d/seed$s.yaml"
+    { cat "$d/scene.yaml"; printf 'granular: {seed: %s%s}\n' "$s" "${GRANULAR:+, $GRANULAR}"; } > "$d/seed$s.yaml"
     CI=1 "$bin/pipeline" predict "$d/seed$s.yaml" --predictor granular --calibration "$table" \
       --out "$d/seed$s" > /dev/null 2> "$d/seed${s}_err.txt"
     e=$(value "$d/seed$s/granular/summary.json" restitution)

@@ -32,29 +32,14 @@ constexpr double kGroupOutlierSigmas = 3.5;
 // pooled fit's field definition: its own stations, acceptance and outlier
 // tests. NaN where it finds no attached shock.
 double own_group_angle(const scene::Scene& s, const scene::Lattice& lat, const ShockResult& like) {
-  const std::size_t plus = like.field.find('+');
-  const ShockResult q =
-      plus == std::string::npos
-          ? locate_shock_with(s, lat, like.field)
-          : locate_shock_joint(s, lat, like.field.substr(0, plus), like.field.substr(plus + 1));
+  const ShockResult q = locate_shock_as(s, lat, like.field);
   return q.shock == scene::ShockKind::attached ? q.shock_angle_deg : kNaN;
-}
-
-double median_of(std::vector<double> v) {
-  const std::size_t h = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
-  if (v.size() % 2 == 1) return v[h];
-  return 0.5 * (v[h] + *std::max_element(v.begin(), v.begin() + static_cast<long>(h)));
 }
 
 // The values within kGroupOutlierSigmas robust sigmas of their median.
 std::vector<double> without_outliers(const std::vector<double>& values) {
-  if (values.empty()) return values;
-  const double mid = median_of(values);
-  std::vector<double> centred;
-  for (const double v : values) centred.push_back(v - mid);
   std::vector<double> kept;
-  for (const std::size_t k : within_robust_sigmas(centred, kGroupOutlierSigmas, 0.0))
+  for (const std::size_t k : near_median(values, kGroupOutlierSigmas, 0.0))
     kept.push_back(values[k]);
   return kept;
 }

@@ -194,7 +194,18 @@ using StationFitter = std::function<StationFit(int index, scene::Vec2 origin, sc
 ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
                                const std::string& field, const StationFitter& fit_at);
 
+constexpr char kJointFieldSeparator = '+';
+std::string joint_field_label(const std::string& density, const std::string& velocity) {
+  return density + kJointFieldSeparator + velocity;
+}
+
 }  // namespace
+
+std::pair<std::string, std::string> split_field_label(const std::string& label) {
+  const std::size_t at = label.find(kJointFieldSeparator);
+  if (at == std::string::npos) return {label, ""};
+  return {label.substr(0, at), label.substr(at + 1)};
+}
 
 ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& lat, const std::string& field) {
   require_body(s);
@@ -211,7 +222,7 @@ ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& lat,
   (void)lat.field(density);
   (void)lat.field(velocity);
   const scene::Domain d = scene::scene_domain(s);
-  const std::string label = density + "+" + velocity;
+  const std::string label = joint_field_label(density, velocity);
   return locate_with_fitter(s, lat, label, [&](int k, scene::Vec2 origin, scene::Vec2 normal) {
     const StationFit fd = fit_station(lat, density, d, s.shockfit, k, origin, normal);
     // On the stagnation line v is zero on both sides of the shock (symmetry):
@@ -420,14 +431,18 @@ ShockResult locate_with_fitter(const scene::Scene& s, const scene::Lattice& lat,
 
 }  // namespace
 
+ShockResult locate_shock_as(const scene::Scene& s, const scene::Lattice& lat,
+                            const std::string& field_label) {
+  const auto [dens, vel] = split_field_label(field_label);
+  return vel.empty() ? locate_shock_with(s, lat, dens) : locate_shock_joint(s, lat, dens, vel);
+}
+
 double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const ShockResult& like) {
   require_body(s);
   if (like.shock != ShockKind::attached && like.shock != ShockKind::detached) return kNaN;
   const scene::BodyGeometry g = scene::make_body(*s.body);
   const scene::Domain d = scene::scene_domain(s);
-  const std::size_t plus = like.field.find('+');
-  const std::string dens = plus == std::string::npos ? like.field : like.field.substr(0, plus);
-  const std::string vel = plus == std::string::npos ? "" : like.field.substr(plus + 1);
+  const auto [dens, vel] = split_field_label(like.field);
   auto refit = [&](const StationFit& f) {
     StationFit a = fit_station(lat, dens, d, s.shockfit, f.station, f.surface, f.normal);
     if (vel.empty() || f.station < 0) return a;
@@ -472,17 +487,8 @@ double relocate_value(const scene::Scene& s, const scene::Lattice& lat, const Sh
   // vertex one wild station near the axis would throw (the default disc's
   // standoff interval was 1.6x too wide without it, 0.95x with it).
   std::vector<scene::Vec2> pts;
-  if (!shift.empty()) {
-    std::vector<double> order = shift;
-    std::nth_element(order.begin(), order.begin() + static_cast<long>(order.size() / 2),
-                     order.end());
-    const double mid = order[order.size() / 2];
-    std::vector<double> centred;
-    for (const double x : shift) centred.push_back(x - mid);
-    for (const std::size_t k :
-         within_robust_sigmas(centred, kOutlierSigmas, kOutlierFloorCells * cell))
-      pts.push_back(all[k]);
-  }
+  for (const std::size_t k : near_median(shift, kOutlierSigmas, kOutlierFloorCells * cell))
+    pts.push_back(all[k]);
   // Detached: the near-axis parabola's vertex through the same stations;
   // without one, the stagnation line.
   if (std::isfinite(like.vertex_x) && pts.size() >= static_cast<std::size_t>(kMinParabolaPoints)) {

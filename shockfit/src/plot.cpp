@@ -20,10 +20,11 @@ namespace shockfit {
 namespace fs = std::filesystem;
 
 namespace {
-// The joint shock ("volume_fraction+v") is located on two fields; the
-// pictures draw the first, the density-like one.
-std::string drawn_field(const std::string& located_on) { return located_on.substr(0, located_on.find('+')); }
-
+// The joint shock is located on two fields; the pictures draw the
+// density-like one.
+std::string drawn_field(const std::string& located_on) {
+  return split_field_label(located_on).first;
+}
 
 constexpr int kPixelsWide = 1100;
 constexpr int kProfileWide = 900, kProfileHigh = 600;

@@ -48,6 +48,22 @@ std::vector<std::size_t> within_robust_sigmas(const std::vector<double>& residua
   return keep;
 }
 
+std::vector<std::size_t> near_median(const std::vector<double>& values, double sigmas,
+                                     double floor) {
+  if (values.empty()) return {};
+  std::vector<double> v = values;
+  const std::size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(h), v.end());
+  const double mid =
+      v.size() % 2 == 1
+          ? v[h]
+          : 0.5 * (v[h] + *std::max_element(v.begin(), v.begin() + static_cast<long>(h)));
+  std::vector<double> centred;
+  centred.reserve(values.size());
+  for (const double x : values) centred.push_back(x - mid);
+  return within_robust_sigmas(centred, sigmas, floor);
+}
+
 std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sigmas, double floor) {
   if (pts.size() < 3) {
     std::vector<std::size_t> keep;

@@ -2,6 +2,7 @@
 // The shock locator: two-line fits along body normals (docs/shockfit.md).
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/lattice.hpp"
@@ -67,6 +68,17 @@ ShockResult locate_shock_with(const scene::Scene& s, const scene::Lattice& field
 // the stagnation line uses the density alone.
 ShockResult locate_shock_joint(const scene::Scene& s, const scene::Lattice& fields,
                                const std::string& density, const std::string& velocity);
+
+// A ShockResult's `field` label split into the density-like field and the
+// velocity of a joint shock ("volume_fraction+v"); the velocity is empty for
+// a one-field label.
+std::pair<std::string, std::string> split_field_label(const std::string& label);
+
+// The shock found from scratch with the field definition a ShockResult's
+// `field` label names: one field ("density"), or the joint shock of two
+// ("density+velocity").
+ShockResult locate_shock_as(const scene::Scene& s, const scene::Lattice& fields,
+                            const std::string& field_label);
 
 // The angle (attached, deg) or standoff (detached, body lengths) of `like`'s
 // shock found again on another lattice of the same scene (the fields of one

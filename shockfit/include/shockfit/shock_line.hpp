@@ -21,6 +21,11 @@ LineFit fit_orthogonal_line(const std::vector<scene::Vec2>& pts);
 std::vector<std::size_t> within_robust_sigmas(const std::vector<double>& residuals, double sigmas,
                                               double floor);
 
+// Indices of values within `sigmas` robust sigmas (and at least `floor`) of
+// their median (the mean of the middle two for an even count).
+std::vector<std::size_t> near_median(const std::vector<double>& values, double sigmas,
+                                     double floor);
+
 // Indices of points within `sigmas` robust sigmas (and at least `floor`) of
 // the line fitted through all of them.
 std::vector<std::size_t> inliers(const std::vector<scene::Vec2>& pts, double sigmas, double floor);

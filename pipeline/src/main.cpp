@@ -91,9 +91,11 @@ int main(int argc, char** argv) {
         "--scene", co.scenes,
         "training wedge scenes (default: generated on --mach x --angle, case studies left out)");
     calib->add_option("--mach", co.machs, "Mach numbers of the generated training wedges")
+        ->capture_default_str()
         ->delimiter(',');
     calib
         ->add_option("--angle", co.angles_deg, "deflections (deg) of the generated training wedges")
+        ->capture_default_str()
         ->delimiter(',');
     calib->add_option("--e", co.restitutions, "restitution values to sweep")->delimiter(',');
     calib

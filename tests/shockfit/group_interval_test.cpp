@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "scene/gasdynamics.hpp"
 #include "scene/units.hpp"
 #include "shockfit/locate.hpp"
+#include "shockfit/shock_line.hpp"
 #include "synthetic.hpp"
 
 namespace {
@@ -108,4 +110,24 @@ TEST(GroupInterval, AttachedGroupsAlsoFindTheirShockOnTheirOwn) {
   for (const double a : r.group_own_angles) EXPECT_NEAR(a, pooled + 0.3, kAngleTolDeg);
   EXPECT_LT(r.shock_angle_ci_deg, kAngleTolDeg);
   EXPECT_EQ(r.summary()["group_own_angles_deg"].size(), 8u);
+}
+
+// The outlier rule the groups and the bow shock's stations share: distances
+// from the median (the mean of the middle two for an even count) in robust
+// sigmas (1.4826 x the median absolute distance), never tighter than the floor.
+TEST(NearMedian, KeepsTheBulkAndDropsAWildValueAboutTheTrueMedian) {
+  // Even count: median 11 (the middle two, 11 and 11), median distance 1;
+  // the wild 40 lies 29 away, beyond 3.5 x 1.4826.
+  const std::vector<double> even{9, 10, 11, 12, 10, 11, 40, 11};
+  const auto keep = shockfit::near_median(even, 3.5, 0.0);
+  EXPECT_EQ(keep.size(), 7u);
+  for (const std::size_t k : keep) EXPECT_NE(even[k], 40.0);
+  // A floor wider than the wild value's distance keeps everything.
+  EXPECT_EQ(shockfit::near_median(even, 3.5, 30.0).size(), even.size());
+  // Odd count, identical values but one: zero spread, so only the floor
+  // decides (0 here: the odd one goes).
+  const std::vector<double> odd{2, 2, 2, 2, 3};
+  EXPECT_EQ(shockfit::near_median(odd, 3.5, 0.0).size(), 4u);
+  EXPECT_EQ(shockfit::near_median(odd, 3.5, 1.0).size(), 5u);
+  EXPECT_TRUE(shockfit::near_median({}, 3.5, 0.0).empty());
 }

@@ -33,9 +33,9 @@ struct CalibrateOptions {
   // Training wedges. Default: generated on the machs x angles_deg grid
   // (attached at gamma 1.4, case studies left out) with every other scene key
   // at its default, as the case studies have them. Seven Machs x five angles:
-  // on the coarser 4 x 3 grid the fitted e missed a bend in ln M that left
-  // unseen wedges 0.46 deg RMS off against 0.26 with this one (about 2.3x the
-  // sweep time; docs/calibration.md, "A denser training grid").
+  // the coarser 4 x 3 grid missed a bend of e in ln M, and its table left 8
+  // unseen wedges 0.43 deg RMS off against 0.27 with this one (2.5x the CPU;
+  // docs/calibration.md, "Result (2026-12-05, shipped)").
   std::vector<std::string> scenes;
   std::vector<double> machs{2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0};
   std::vector<double> angles_deg{8.0, 11.0, 14.0, 17.0, 20.0};

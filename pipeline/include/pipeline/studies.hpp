@@ -33,8 +33,8 @@ struct CalibrateOptions {
   // Training wedges. Default: generated on the machs x angles_deg grid
   // (attached at gamma 1.4, case studies left out) with every other scene key
   // at its default, as the case studies have them. Seven Machs x five angles:
-  // the coarser 4 x 3 grid missed a bend of e in ln M, and its table left 8
-  // unseen wedges 0.43 deg RMS off against 0.27 with this one (2.5x the CPU;
+  // the coarser 4 x 3 grid missed a bend of e in ln M, and its table left 16
+  // unseen wedges 0.48 deg RMS off against 0.32 with this one (2.5x the CPU;
   // docs/calibration.md, "Result (2026-12-05, shipped)").
   std::vector<std::string> scenes;
   std::vector<double> machs{2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0};

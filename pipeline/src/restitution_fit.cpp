@@ -151,20 +151,8 @@ std::optional<RestitutionModel> model_from_key(const std::string& key) {
 }
 
 std::size_t parameter_count(RestitutionModel m) {
-  switch (m) {
-    case RestitutionModel::constant:
-      return 1;
-    case RestitutionModel::inverse_mach2:
-    case RestitutionModel::log_mach:
-      return 2;
-    case RestitutionModel::inverse_mach2_angle:
-    case RestitutionModel::log_mach_angle:
-    case RestitutionModel::log_mach_inverse_angle:
-      return 3;
-    case RestitutionModel::log_mach2_inverse_angle:
-      return 4;
-  }
-  return 0;
+  // One coefficient per basis function; any finite point gives the length.
+  return basis(m, 2.0, 10.0).size();
 }
 
 bool uses_angle(RestitutionModel m) {

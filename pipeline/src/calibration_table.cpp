@@ -24,6 +24,8 @@ constexpr int kEntryDigits = 6;
 constexpr int kCoefficientDigits = 17;
 // training_points must repeat the entries' (Mach, angle) to this tolerance.
 constexpr double kTrainingPointMatch = 1e-9;
+// A run's 95% angle interval over this is the standard deviation of its angle.
+constexpr double kZ95 = 1.96;
 
 [[noreturn]] void bad(const std::string& path, const YAML::Node& n, const std::string& key,
                       const std::string& what) {
@@ -307,6 +309,22 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
     ++n;
   }
   return n >= 2 ? std::sqrt(ss / n) : kNaN;
+}
+
+double table_angle_scatter_deg(const CalibrationTable& t) {
+  const double rms = out_of_sample_angle_rms_deg(t);
+  if (!std::isfinite(rms)) return kNaN;
+  double noise = 0;
+  int n = 0;
+  for (const auto& e : t.entries) {
+    if (!std::isfinite(e.loo_restitution) || !std::isfinite(e.granular_angle_deg - e.gas_angle_deg))
+      continue;
+    // A run without an interval counts as noiseless: the scatter then errs wide.
+    const double sd = std::isfinite(e.granular_angle_ci_deg) ? e.granular_angle_ci_deg / kZ95 : 0.0;
+    noise += sd * sd;
+    ++n;
+  }
+  return std::sqrt(std::max(0.0, rms * rms - noise / n));
 }
 
 std::optional<BowShockScatter> bow_shock_kept_by_wedge_fit(const CalibrationTable& old) {

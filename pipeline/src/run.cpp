@@ -164,7 +164,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // the table's bow-shock block, measured on blunt bodies, does: for blunt
   // bodies, and for a wedge beyond its maximum deflection, whose shock stands
   // off too (the predictor uses it only on a shock it finds detached).
-  const double scatter = angle_deg ? out_of_sample_angle_rms_deg(t) : kNaN;
+  const double scatter = angle_deg ? table_angle_scatter_deg(t) : kNaN;
   const bool bow_shock = !angle_deg || scene::shock_may_stand_off(s);
   const double bow = shape                      ? shape->relative_rms
                      : bow_shock && t.bow_shock ? t.bow_shock->relative_rms

@@ -136,11 +136,31 @@ TEST(Calibration, FittedTableAppliedToAScene) {
   EXPECT_NEAR(s.granular.restitution, 0.9491 + (2.0 / 7.0) / 16.0 + 15.0 / 1300.0, 1e-6);
   // The RMS of the out-of-sample angle errors, +0.3 and +1.4 deg.
   const double rms = std::sqrt((0.3 * 0.3 + 1.4 * 1.4) / 2.0);
-  EXPECT_NEAR(applied.angle_scatter_deg, rms, 1e-9);
   EXPECT_NEAR(pipeline::out_of_sample_angle_rms_deg(fitted_table()), rms, 1e-9);
+  // The band's scatter leaves out the left-out runs' own noise (both +-0.6 deg, sd 0.6 / 1.96),
+  // which a new run's interval already holds.
+  const double own = 0.6 / 1.96;
+  EXPECT_NEAR(applied.angle_scatter_deg, std::sqrt(rms * rms - own * own), 1e-9);
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(fitted_table()), std::sqrt(rms * rms - own * own),
+              1e-9);
   // A wedge's angle scatter is not a bow shock's: a disc gets none.
   auto disc = scene::parse_scene("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
   EXPECT_TRUE(std::isnan(pipeline::apply_calibration(disc, path).angle_scatter_deg));
+}
+
+TEST(Calibration, TheBandsScatterIsTheTablesErrorWithoutTheRunsNoise) {
+  auto t = fitted_table();
+  // Left-out runs noisier than their errors: the table's own error is not seen, so zero.
+  for (auto& e : t.entries) e.granular_angle_ci_deg = 4.0;
+  EXPECT_EQ(pipeline::table_angle_scatter_deg(t), 0.0);
+  // A run without an interval counts as noiseless, so the scatter errs wide.
+  t.entries[0].granular_angle_ci_deg = NAN;
+  t.entries[1].granular_angle_ci_deg = NAN;
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(t), pipeline::out_of_sample_angle_rms_deg(t),
+              1e-12);
+  // An old table (no leave-one-out runs) has none.
+  for (auto& e : t.entries) e.loo_restitution = NAN;
+  EXPECT_TRUE(std::isnan(pipeline::table_angle_scatter_deg(t)));
 }
 
 TEST(Calibration, OutsideTheTrainingMachRangeIsSaid) {

@@ -120,6 +120,12 @@ void write_calibration(const CalibrationTable& t, const std::string& path);
 // angle, the run's own noise included. NaN for an old table (its reruns are
 // in sample) or fewer than two such entries.
 double out_of_sample_angle_rms_deg(const CalibrationTable& t);
+// The table's own error in the angle: that RMS with the left-out runs' own
+// noise (each run's 95% interval / 1.96) taken out in quadrature, floored at
+// zero. A new run's interval already holds its own noise; counting the
+// left-out runs' noise again in the band would count it twice. This is the
+// scatter an attached shock's band adds. NaN where the RMS is.
+double table_angle_scatter_deg(const CalibrationTable& t);
 
 // The Mach-only fit that bodies without a wedge angle take: the bow block's
 // recorded law, else the chosen model when it ignores the angle, else the

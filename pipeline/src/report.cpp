@@ -459,7 +459,7 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
   if (in.prediction.kind == scene::ShockKind::attached && std::isfinite(band))
     md << " Meshed as the ray from the apex at that angle, its band +-" << format_number(band, 3) << " deg"
        << (std::isfinite(scatter) ? " (the angle's own 95% interval +-" + format_number(number_or_nan(g, "shock_angle_ci_deg"), 3) +
-                                        " deg combined with 1.96 times the calibration's out-of-sample RMS, " +
+                                        " deg combined with 1.96 times the calibration table's own error (its out-of-sample RMS less the left-out runs' noise), " +
                                         format_number(scatter, 3) + " deg)"
                                   : " (the angle's own 95% interval; the scene sets its restitution, so no calibration scatter)")
        << ".";

@@ -41,6 +41,15 @@ constexpr int kMinParabolaPoints = 5;
 // this many of the station's 95% half-widths, or this many lattice spacings.
 constexpr double kVertexAgreeCi = 3.0;
 constexpr double kVertexAgreeCells = 3.0;
+// An attached shock leaves the apex downstream, so no point of it stands
+// upstream of a sharp nose (over 150 granular runs of attached wedges the
+// most upstream accepted point lay 0.034 body lengths downstream of the
+// apex). This many accepted stations upstream of the nose, beyond the
+// attached limit, are a shock standing off even when the stagnation line's
+// jump is too smooth to pass its tests on its own (a granular bow shock just
+// beyond the maximum deflection is as thick as its standoff); two, so that
+// one noisy profile cannot decide.
+constexpr int kMinStationsAhead = 2;
 // Two stations closer than this (in lattice spacings) are the same point.
 constexpr double kSamePointCells = 1e-6;
 // A nose whose surface leaves the axis steeper than this (half-angle, deg)
@@ -270,6 +279,20 @@ AxisParabola fit_near_axis(const ShockResult& r, const scene::BodyGeometry& g,
   return a;
 }
 
+// Enough accepted stations upstream of a sharp nose, with the stagnation
+// line's best jump (accepted or not) standing off too: see kMinStationsAhead.
+// Not one noisy profile, so neither the stagnation line's own tests nor its
+// agreement with the near-axis parabola (both fail where the shock is as
+// thick as its standoff) need to pass.
+bool stations_stand_ahead(const ShockResult& r, const scene::BodyGeometry& g, double attached_limit,
+                          double cell) {
+  if (!(r.stagnation.distance > attached_limit)) return false;  // NaN: no jump at all
+  const auto ahead = std::count_if(r.stations.begin(), r.stations.end(), [&](const StationFit& f) {
+    return f.accepted && !is_nose_station(f, g, cell) && g.nose.x - f.shock.x > attached_limit;
+  });
+  return ahead >= kMinStationsAhead;
+}
+
 // A detached shock needs a jump on the stagnation line away from the nose
 // and, where the stations near the axis allow the check, a vertex there
 // too: one noisy profile alone must not turn an attached shock into a bow
@@ -281,6 +304,7 @@ bool is_detached(const ShockResult& r, const AxisParabola& a, const scene::BodyG
   const bool stagnation_off = r.stagnation.accepted && r.stagnation.distance > attached_limit;
   const bool parabola_off = a.valid && std::isfinite(a.x0) && g.nose.x - a.x0 > attached_limit;
   if (blunt) return parabola_off || stagnation_off;
+  if (stations_stand_ahead(r, g, attached_limit, cell)) return true;
   if (!stagnation_off) return false;
   if (a.valid) return std::abs(a.x0 - r.stagnation.shock.x) <= vertex_tol;
   if (!a.fitted) return true;  // too few points to check: the stagnation line decides

@@ -26,13 +26,16 @@ namespace fs = std::filesystem;
 constexpr double kMinStandoff = 0.05;
 constexpr double kMaxStandoff = 1.0;
 
-shockfit::ShockResult locate(const std::string& text, const std::string& tag) {
-  const scene::Scene s = scene::parse_scene(text, tag + ".yaml");
+// A unit-length wedge of `angle_deg` at `mach`, restitution `e`, seed 7.
+shockfit::ShockResult locate_wedge(double mach, double angle_deg, double e) {
+  const std::string text = "body: {kind: wedge, angle_deg: " + std::to_string(angle_deg) +
+                           ", length: 1.0}\nfreestream: {mach: " + std::to_string(mach) +
+                           "}\ngranular: {restitution: " + std::to_string(e) + ", seed: 7}\n";
+  const scene::Scene s = scene::parse_scene(text, "detached_wedge.yaml");
   granular::RunOptions o;
   o.np = 2;
-  o.out_dir =
-      (fs::temp_directory_path() / ("shockfit_detached_" + tag + std::to_string(::getpid())))
-          .string();
+  o.out_dir = (fs::temp_directory_path() / ("shockfit_detached_" + std::to_string(::getpid())))
+                  .string();
   const granular::FlowResult g = granular::run_flow_scene(s, o);
   fs::remove_all(o.out_dir);
   return shockfit::locate_shock(s, g.fields);
@@ -48,22 +51,12 @@ void expect_standing_off(const shockfit::ShockResult& r) {
 
 }  // namespace
 
+// theta_max(M 2.5) = 29.8 deg.
 TEST(DetachedWedge, MachTwoAndAHalfThirtyOneDegreesStandsOff) {
-  // theta_max(M 2.5) = 29.8 deg.
-  expect_standing_off(locate(R"(
-body: {kind: wedge, angle_deg: 31, length: 1.0}
-freestream: {mach: 2.5}
-granular: {restitution: 0.985, seed: 7}
-)",
-                             "m25"));
+  expect_standing_off(locate_wedge(2.5, 31, 0.985));
 }
 
+// theta_max(M 3) = 34.1 deg.
 TEST(DetachedWedge, MachThreeThirtySixDegreesStandsOff) {
-  // theta_max(M 3) = 34.1 deg.
-  expect_standing_off(locate(R"(
-body: {kind: wedge, angle_deg: 36, length: 1.0}
-freestream: {mach: 3}
-granular: {restitution: 0.98, seed: 7}
-)",
-                             "m3"));
+  expect_standing_off(locate_wedge(3, 36, 0.98));
 }

@@ -60,6 +60,7 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
   p.shock_csv = cx.out_dir + "/shockfit/shock.csv";
   const double band_ci =
       band_angle_half_width_deg(p.shock_angle_ci_deg, cx.calibration_angle_scatter_deg);
+  double bow_rel = scene::kNaN;  // the bow-shock scatter the band used (detached only)
   if (p.kind == scene::ShockKind::attached && std::isfinite(p.shock_angle_deg)) {
     const ShockCurve ray =
         apex_ray(scene::scene_domain(cx.scene), scene::make_body(*cx.scene.body).nose,
@@ -86,14 +87,13 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
     // The stations' own intervals say how well this run knows its shock, not
     // how far the calibrated gas is from the ideal gas's: a bow shock's band
     // also covers the table's out-of-sample error of its distances (NaN: none).
-    const double rel =
-        p.kind == scene::ShockKind::detached ? cx.calibration_bow_shock_relative_rms : scene::kNaN;
+    if (p.kind == scene::ShockKind::detached) bow_rel = cx.calibration_bow_shock_relative_rms;
     for (const auto& q : read_accepted_shock(p.shock_csv)) {
       p.curve.push_back(q.point);
-      p.half_width.push_back(band_bow_half_width(q.half_width, q.distance, rel));
+      p.half_width.push_back(band_bow_half_width(q.half_width, q.distance, bow_rel));
     }
-    if (std::isfinite(rel)) {
-      p.fingerprint = fingerprint({p.fingerprint, fmt::format("bow band {:.17g}", rel)});
+    if (std::isfinite(bow_rel)) {
+      p.fingerprint = fingerprint({p.fingerprint, fmt::format("bow band {:.17g}", bow_rel)});
       p.shock_csv = cx.out_dir + "/shock_band.csv";
       write_shock_curve(p.shock_csv, p.curve, p.half_width);
     }
@@ -104,7 +104,7 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
        {"field", r.value("field", "")},
        {"calibration_angle_scatter_deg", json_number(cx.calibration_angle_scatter_deg)},
        {"band_angle_half_width_deg", json_number(band_ci)},
-       {"calibration_bow_shock_relative_rms", json_number(cx.calibration_bow_shock_relative_rms)},
+       {"calibration_bow_shock_relative_rms", json_number(bow_rel)},
        {"averaging", averaging_report(r)}});
   return p;
 }

@@ -161,14 +161,12 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = quantised_restitution(*e);
   // The wedge table's angle scatter says nothing about a bow shock's standoff;
-  // the table's bow-shock block, measured on blunt bodies, does: for blunt
-  // bodies, and for a wedge beyond its maximum deflection, whose shock stands
-  // off too (the predictor uses it only on a shock it finds detached).
+  // the table's bow-shock block, measured on blunt bodies, does. Every body
+  // gets it and the predictor uses it on a shock it finds detached: blunt
+  // bodies, a wedge beyond its maximum deflection, and a wedge just below it,
+  // where the granular gas's shock detaches first.
   const double scatter = angle_deg ? table_angle_scatter_deg(t) : kNaN;
-  const bool bow_shock = !angle_deg || scene::shock_may_stand_off(s);
-  const double bow = shape                      ? shape->relative_rms
-                     : bow_shock && t.bow_shock ? t.bow_shock->relative_rms
-                                                : kNaN;
+  const double bow = shape ? shape->relative_rms : t.bow_shock ? t.bow_shock->relative_rms : kNaN;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),

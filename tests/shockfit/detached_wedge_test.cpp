@@ -4,8 +4,8 @@
 // the station tests. The stations standing upstream of the apex still say
 // the shock stands off; before they counted, such runs were fitted as an
 // attached line at ~58 deg crossing the axis ~0.4 body lengths ahead of the
-// apex. Real granular runs at the default scale, fixed seeds. Slow: about
-// ten CPU seconds each.
+// apex. Real granular runs at the default scale, fixed seeds. Slow: a few
+// CPU seconds each.
 #include <gtest/gtest.h>
 #include <unistd.h>
 

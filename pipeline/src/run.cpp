@@ -204,8 +204,13 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
         *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
     note += buf;
   }
-  // A bow shock's prediction owes its band to the blunt training runs too.
-  const double cost = std::isfinite(bow) ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
+  // A bow shock's prediction owes its band to the blunt training runs too:
+  // charged to the bodies whose shock stands off in the gas (an attached
+  // wedge whose granular shock detaches near the maximum deflection borrows
+  // the scatter without that charge; its attached twins never use it).
+  const bool stands_off = !angle_deg || scene::shock_may_stand_off(s);
+  const double cost =
+      std::isfinite(bow) && stands_off ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
   return {note, cost, scatter, bow, outside};
 }
 

@@ -96,6 +96,7 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   t.bow_shock->relative_rms = 0.1234567890123;
   t.bow_shock->bodies = {"disc_M3", "disc_M6"};
   t.bow_shock->stations = 67;
+  t.bow_shock->cpu_seconds = 500;
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_TRUE(back.bow_shock.has_value());
@@ -113,6 +114,17 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   auto detached =
       scene::parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n");
   EXPECT_EQ(pipeline::apply_calibration(detached, path).bow_shock_relative_rms, 0.1234567890123);
+  // The blunt training runs are charged to the bodies whose shock stands off in the gas only.
+  const auto cost = [&](const char* text) {
+    auto s = scene::parse_scene(text);
+    return pipeline::apply_calibration(s, path).cpu_seconds;
+  };
+  EXPECT_DOUBLE_EQ(cost("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n"),
+                   t.cpu_seconds + 500);
+  EXPECT_DOUBLE_EQ(cost("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 3.5}\n"),
+                   t.cpu_seconds + 500);
+  EXPECT_DOUBLE_EQ(cost("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 3.5}\n"),
+                   t.cpu_seconds);
   // A scene's own restitution owes nothing to the table.
   auto own = scene::parse_scene(
       "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 3.5}\ngranular: {restitution: 0.97}\n");

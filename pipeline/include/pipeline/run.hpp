@@ -32,7 +32,8 @@ struct AppliedCalibration {
   // came from it and the body has a wedge angle; NaN otherwise.
   double angle_scatter_deg = scene::kNaN;
   // Its bow shocks' out-of-sample relative distance error (RMS) when the
-  // restitution came from it and the body has no wedge angle; NaN otherwise.
+  // restitution came from it (for every body: the predictor uses it on a
+  // shock it finds detached); NaN otherwise.
   double bow_shock_relative_rms = scene::kNaN;
   // The scene's Mach number lies outside the table's training range: e(M)
   // is extrapolated, and the prediction's error there is unmeasured.

@@ -299,12 +299,20 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
   scene::write_file_atomic(path, header + e.c_str() + "\n");
 }
 
+namespace {
+// An entry whose granular angle was measured at its leave-one-out e: a new
+// table's out-of-sample run (an old table's reruns are in sample).
+bool measured_out_of_sample(const CalibrationEntry& e) {
+  return std::isfinite(e.loo_restitution) && std::isfinite(e.granular_angle_deg - e.gas_angle_deg);
+}
+}  // namespace
+
 double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
   double ss = 0;
   int n = 0;
   for (const auto& e : t.entries) {
+    if (!measured_out_of_sample(e)) continue;
     const double err = e.granular_angle_deg - e.gas_angle_deg;
-    if (!std::isfinite(e.loo_restitution) || !std::isfinite(err)) continue;
     ss += err * err;
     ++n;
   }
@@ -317,8 +325,7 @@ double table_angle_scatter_deg(const CalibrationTable& t) {
   double noise = 0;
   int n = 0;
   for (const auto& e : t.entries) {
-    if (!std::isfinite(e.loo_restitution) || !std::isfinite(e.granular_angle_deg - e.gas_angle_deg))
-      continue;
+    if (!measured_out_of_sample(e)) continue;
     // A run without an interval counts as noiseless: the scatter then errs wide.
     const double sd = std::isfinite(e.granular_angle_ci_deg) ? e.granular_angle_ci_deg / kZ95 : 0.0;
     noise += sd * sd;

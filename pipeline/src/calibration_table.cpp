@@ -10,6 +10,7 @@
 #include "scene/io.hpp"
 #include "scene/units.hpp"
 #include "scene/yaml_text.hpp"
+#include "shockfit/group_interval.hpp"
 
 namespace pipeline {
 
@@ -24,8 +25,6 @@ constexpr int kEntryDigits = 6;
 constexpr int kCoefficientDigits = 17;
 // training_points must repeat the entries' (Mach, angle) to this tolerance.
 constexpr double kTrainingPointMatch = 1e-9;
-// A run's 95% angle interval over this is the standard deviation of its angle.
-constexpr double kZ95 = 1.96;
 
 [[noreturn]] void bad(const std::string& path, const YAML::Node& n, const std::string& key,
                       const std::string& what) {
@@ -327,7 +326,7 @@ double table_angle_scatter_deg(const CalibrationTable& t) {
   for (const auto& e : t.entries) {
     if (!measured_out_of_sample(e)) continue;
     // A run without an interval counts as noiseless: the scatter then errs wide.
-    const double sd = std::isfinite(e.granular_angle_ci_deg) ? e.granular_angle_ci_deg / kZ95 : 0.0;
+    const double sd = std::isfinite(e.granular_angle_ci_deg) ? e.granular_angle_ci_deg / shockfit::kNormal95 : 0.0;
     noise += sd * sd;
     ++n;
   }

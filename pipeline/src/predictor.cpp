@@ -11,12 +11,11 @@
 #include "scene/io.hpp"
 #include "scene/shock_csv.hpp"
 #include "scene/units.hpp"
+#include "shockfit/group_interval.hpp"
 
 namespace pipeline {
 
 namespace {
-// Two-sided 95% point of the normal distribution.
-constexpr double kZ95 = 1.96;
 
 // Billig's cylinder shock for Mach `mach` and nose radius `radius`, its
 // vertex at `vertex`, upper branch (and the lower one when the domain is not
@@ -114,13 +113,13 @@ ShockCurve billig_bow_shock(const scene::Scene& s, double relative_half_width) {
 double band_angle_half_width_deg(double angle_ci_deg, double calibration_scatter_deg) {
   if (!std::isfinite(calibration_scatter_deg)) return angle_ci_deg;
   const double own = std::isfinite(angle_ci_deg) ? angle_ci_deg : 0.0;
-  return std::hypot(own, kZ95 * calibration_scatter_deg);
+  return std::hypot(own, shockfit::kNormal95 * calibration_scatter_deg);
 }
 
 double band_bow_half_width(double ci, double distance, double relative_rms) {
   const double own = std::isfinite(ci) ? ci : 0.0;
   if (!std::isfinite(relative_rms) || !std::isfinite(distance)) return own;
-  return std::hypot(own, kZ95 * relative_rms * distance);
+  return std::hypot(own, shockfit::kNormal95 * relative_rms * distance);
 }
 
 std::vector<ShockPoint> read_accepted_shock(const std::string& path) {

@@ -5,13 +5,11 @@
 #include <cmath>
 
 #include "pipeline/calibration.hpp"
+#include "shockfit/group_interval.hpp"
 
 namespace pipeline {
 
 namespace {
-// The two-sided 95% quantile of the normal distribution: a run's interval
-// over its standard deviation.
-constexpr double kZ95 = 1.96;
 // A fit with a wider 95% interval than this is noise, not a shock angle.
 constexpr double kMaxUsableCiDeg = 5.0;
 bool already_run(const std::vector<SweepPoint>& pts, double e) {
@@ -60,7 +58,7 @@ std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts
   std::vector<SweepPoint> near;
   for (const auto& p : pts)
     if (usable(p) && p.ci > 0 && std::abs(p.e - c->e) <= window) {
-      const double sd = p.ci / kZ95;
+      const double sd = p.ci / shockfit::kNormal95;
       const double w = 1.0 / (sd * sd), x = p.e - c->e;
       s += w;
       sx += w * x;
@@ -81,7 +79,7 @@ std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts
   if (!(slope * rise > 0)) return c;
   double chi2 = 0;
   for (const auto& p : near) {
-    const double sd = p.ci / kZ95, r = p.angle - at - slope * (p.e - c->e);
+    const double sd = p.ci / shockfit::kNormal95, r = p.angle - at - slope * (p.e - c->e);
     chi2 += r * r / (sd * sd);
   }
   const double dof = static_cast<double>(near.size()) - 2.0;
@@ -89,7 +87,7 @@ std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts
   const double x = (target - at) / slope;
   if (std::abs(x) > window) return c;
   const double var = (sxx - 2.0 * x * sx + x * x * s) / det / (slope * slope) * scale;
-  return Crossing{c->e + x, kZ95 * std::sqrt(var), c->e_low, c->e_high};
+  return Crossing{c->e + x, shockfit::kNormal95 * std::sqrt(var), c->e_low, c->e_high};
 }
 
 std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pts, double target,
@@ -106,7 +104,7 @@ std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pt
   Eigen::Matrix3d n = Eigen::Matrix3d::Zero();
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
   for (const auto& p : near) {
-    const double sd = p.ci / kZ95, x = p.e - c->e;
+    const double sd = p.ci / shockfit::kNormal95, x = p.e - c->e;
     const Eigen::Vector3d f(1.0, x, x * x);
     n += f * f.transpose() / (sd * sd);
     r += f * p.angle / (sd * sd);
@@ -135,7 +133,7 @@ std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pt
   }
   double chi2 = 0;
   for (const auto& p : near) {
-    const double sd = p.ci / kZ95, dx = p.e - c->e;
+    const double sd = p.ci / shockfit::kNormal95, dx = p.e - c->e;
     const double res = p.angle - k(0) - b * dx - q * dx * dx;
     chi2 += res * res / (sd * sd);
   }
@@ -144,7 +142,7 @@ std::optional<Crossing> find_crossing_by_curve(const std::vector<SweepPoint>& pt
   // The root moves with the coefficients as -(1, x, x^2) / slope.
   const Eigen::Vector3d g = Eigen::Vector3d(1.0, x, x * x) / slope;
   const double var = g.dot(cov * g) * scale;
-  return Crossing{c->e + x, kZ95 * std::sqrt(var), c->e_low, c->e_high};
+  return Crossing{c->e + x, shockfit::kNormal95 * std::sqrt(var), c->e_low, c->e_high};
 }
 
 SweepPoint mean_point(double e, const std::vector<SweepPoint>& runs) {

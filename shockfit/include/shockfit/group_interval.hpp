@@ -30,6 +30,11 @@ inline constexpr int kMinIntervalGroups = 4;
 // Two-sided 95% quantile of Student's t with `dof` degrees of freedom (>= 1).
 double student_t95(int dof);
 
+// Two-sided 95% quantile of the normal distribution: a reported 95%
+// half-width over the standard deviation it stands for, where the degrees of
+// freedom behind it are not carried along (calibration, prediction bands).
+inline constexpr double kNormal95 = 1.96;
+
 // Replaces r's interval by the groups' (relocate_value on each group's
 // fields; attached, at least that of the groups' own fits); sets
 // r.interval_method ("groups", or "bootstrap" where too few groups find the

@@ -55,6 +55,22 @@ inline constexpr double kLtsCourantFactor = 0.5;
 // through the inlet; then in the free stream).
 bool start_at_rest(const scene::Scene& s);
 
+// The initial state, cfd.start resolved: "rest", "freestream", or
+// "rest_behind_base" (the free stream ahead of the body's widest station, gas
+// at rest at free-stream pressure and temperature behind it). auto gives the
+// last where a free-stream start meets a sharp base inside the domain (a
+// wedge whose shock stands off): the base face moving away from the gas at
+// Mach M opens an unsteady expansion whose wall pressure falls as
+// (1 - (gamma - 1) M / 2)^(2 gamma / (gamma - 1)), 0.0016 of p at Mach 3 and a
+// vacuum from Mach 5, and rhoCentralFoam died of a negative temperature there
+// within ~30 steps at Mach 2.5-6 (docs/reliability.md), while a start at rest
+// sends a bow shock far upstream that takes most of the run to come back.
+std::string initial_state(const scene::Scene& s);
+
+// 0/U's internalField for the initial state on `mesh`: uniform, or one
+// velocity per cell for rest_behind_base.
+std::string initial_velocity_field(const scene::Scene& s, const Mesh2D& mesh);
+
 // Far-field outflow boundaries (outlet, top, bottom) when the estimated flow
 // behind the shock at the outflow station is subsonic
 // (scene::outflow_can_be_subsonic: Billig's shock, or a detached shock ahead
@@ -105,8 +121,8 @@ void check_patches(const Mesh2D& m, const std::string& mesh_dir);
 // Creates case_dir from the templates, the mesh and the settings; copies
 // 0.orig to 0. Replaces an existing case there (InputError if case_dir holds
 // something that is not an OpenFOAM case).
-void write_case(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
-                const CaseSettings& cs);
+void write_case(const scene::Scene& s, const std::string& mesh_dir, const Mesh2D& mesh,
+                const std::string& case_dir, const CaseSettings& cs);
 
 // Sets `key value;` in system/controlDict (atomic, so the running solver
 // never reads half a file).

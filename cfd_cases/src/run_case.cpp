@@ -330,7 +330,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   const Schedule sched = schedule(s, o, mesh, f);
   const CaseSettings& cs = sched.settings;
   const std::string& cdir = paths.case_dir;
-  write_case(s, paths.mesh, cdir, cs);
+  write_case(s, paths.mesh, mesh, cdir, cs);
 
   CaseResult r;
   r.case_dir = cdir;
@@ -339,7 +339,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.flow_through_time = cs.flow_through;
   r.local_time_stepping = cs.lts;
   r.np = cs.np;
-  r.start = start_at_rest(s) ? "rest" : "freestream";
+  r.start = initial_state(s);
   r.outflow = subsonic_outflow(s) ? "subsonic" : "supersonic";
   r.flux_scheme = flux_scheme(s);
   r.limiter = limiter(s);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "scene/body.hpp"
 #include "scene/errors.hpp"
@@ -191,8 +192,12 @@ bool sharp_base_inside_domain(const Scene& s) {
   if (!s.body || !sharp_shoulder(*s.body)) return false;
   // Body and domain compute the station each their own way: equal to round-off.
   constexpr double kOnBoundary = 1e-9;
-  return stations(make_body(*s.body)).x_widest <
-         scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
+  return widest_station_x(s) < scene_domain(s).xmax - kOnBoundary * body_length(*s.body);
+}
+
+double widest_station_x(const Scene& s) {
+  if (!s.body) throw std::logic_error("widest_station_x: a scene without a body");
+  return stations(make_body(*s.body)).x_widest;
 }
 
 }  // namespace scene

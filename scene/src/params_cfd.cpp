@@ -22,7 +22,7 @@ CfdParams parse_cfd(Section& s) {
   p.limiter = s.string("limiter", p.limiter, {"auto", "vanLeer", "Minmod"});
   p.min_time = s.number("min_time", p.min_time, non_negative());
   p.steady_checks = static_cast<int>(s.integer("steady_checks", p.steady_checks, 1, 1000));
-  p.start = s.string("start", p.start, {"auto", "freestream", "rest"});
+  p.start = s.string("start", p.start, {"auto", "freestream", "rest", "rest_behind_base"});
   p.fallback = s.boolean("fallback", p.fallback);
   if (p.write_interval > p.end_time) s.fail("write_interval", "must not exceed end_time");
   if (p.end_time / p.write_interval > kMaxWrites)

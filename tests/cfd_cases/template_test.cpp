@@ -217,3 +217,39 @@ TEST(FarField, PointedPolygonKeepsTheSupersonicOutflow) {
 }
 
 }  // namespace
+
+TEST(InitialState, ADetachedWedgeStartsWithItsWakeAtRest) {
+  const scene::Scene detached = cfd_test::wedge_scene(3.0, 36.0);
+  EXPECT_EQ(cfd::initial_state(detached), "rest_behind_base");
+  EXPECT_FALSE(cfd::start_at_rest(detached));
+  EXPECT_EQ(cfd::flux_scheme(detached), "Tadmor");
+  EXPECT_EQ(cfd::initial_state(cfd_test::wedge_scene(3.0, 10.0)), "freestream");
+  EXPECT_EQ(cfd::initial_state(scene::parse_scene(
+                "name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n")),
+            "rest");
+  // Named starts win; rest_behind_base needs a base inside the domain.
+  const std::string m3_36 = "name: w\nbody: {kind: wedge, angle_deg: 36}\nfreestream: {mach: 3}\n";
+  EXPECT_EQ(cfd::initial_state(scene::parse_scene(m3_36 + "cfd: {start: freestream}\n")),
+            "freestream");
+  EXPECT_EQ(cfd::initial_state(scene::parse_scene(m3_36 + "cfd: {start: rest}\n")), "rest");
+  EXPECT_THROW((void)cfd::initial_state(scene::parse_scene(
+                   "name: w\nbody: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n"
+                   "cfd: {start: rest_behind_base}\n")),
+               scene::InputError);
+  EXPECT_THROW((void)scene::parse_scene(m3_36 + "cfd: {start: wake}\n"), scene::InputError);
+}
+
+TEST(InitialState, TheVelocityIsTheFreeStreamAheadOfTheBaseAndZeroBehindIt) {
+  // Three cells: ahead of the apex, over the wedge, behind its base.
+  const scene::Scene s = cfd_test::wedge_scene(3.0, 36.0);
+  const double x_base = scene::widest_station_x(s);
+  EXPECT_NEAR(x_base, std::cos(36.0 * scene::kDeg), 1e-12);
+  cfd::Mesh2D mesh;
+  for (const double x : {-0.5, 0.5 * x_base, x_base + 0.1}) {
+    mesh.cell_centre.push_back({x, 1.0});
+    mesh.cell_area.push_back(1.0);
+  }
+  EXPECT_EQ(cfd::initial_velocity_field(s, mesh),
+            "nonuniform List<vector> 3\n(\n(3 0 0)\n(3 0 0)\n(0 0 0)\n)");
+  EXPECT_EQ(cfd::initial_velocity_field(cfd_test::wedge_scene(3.0, 10.0), mesh), "uniform (3 0 0)");
+}

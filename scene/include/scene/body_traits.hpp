@@ -64,7 +64,8 @@ double band_anisotropy(const Scene& s);
 // attached wedge's base lies on the outflow boundary, so an impulsive start
 // has no afterbody to open a vacuum behind, and at rest the starting shock
 // creeps in from the inlet (at Mach 2 it travels at 0.26 c); a detached
-// wedge's base lies inside the domain (sharp_base_inside_domain). Other
+// wedge's base lies inside the domain (sharp_base_inside_domain), and the
+// CFD stage starts its wake at rest behind the widest station. Other
 // bodies: yes (Apollo's receding afterbody; discs and polygons as measured in
 // the case studies).
 bool starts_at_rest(const BodySpec& b);
@@ -88,5 +89,7 @@ bool outflow_can_be_subsonic(const Scene& s);
 // inside the domain, with wake behind it: the default domain of a wedge
 // whose shock stands off, or a domain override reaching past the base.
 bool sharp_base_inside_domain(const Scene& s);
+// x of the body's widest station (a wedge's base plane), body lengths.
+double widest_station_x(const Scene& s);
 
 }  // namespace scene

@@ -326,7 +326,9 @@ double table_angle_scatter_deg(const CalibrationTable& t) {
   for (const auto& e : t.entries) {
     if (!measured_out_of_sample(e)) continue;
     // A run without an interval counts as noiseless: the scatter then errs wide.
-    const double sd = std::isfinite(e.granular_angle_ci_deg) ? e.granular_angle_ci_deg / shockfit::kNormal95 : 0.0;
+    const double sd = std::isfinite(e.granular_angle_ci_deg)
+                          ? e.granular_angle_ci_deg / shockfit::kNormal95
+                          : 0.0;
     noise += sd * sd;
     ++n;
   }

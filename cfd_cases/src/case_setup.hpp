@@ -59,7 +59,9 @@ bool start_at_rest(const scene::Scene& s);
 // "rest_behind_base" (the free stream ahead of the body's widest station, gas
 // at rest at free-stream pressure and temperature behind it). auto gives the
 // last where a free-stream start meets a sharp base inside the domain (a
-// wedge whose shock stands off): the base face moving away from the gas at
+// wedge whose shock stands off), above the rest-start Mach limit (below it
+// the shock between the free stream and the gas at rest runs out through
+// the inlet, as from a start at rest): the base face moving away from the gas at
 // Mach M opens an unsteady expansion whose wall pressure falls as
 // (1 - (gamma - 1) M / 2)^(2 gamma / (gamma - 1)), 0.0016 of p at Mach 3 and a
 // vacuum from Mach 5, and rhoCentralFoam died of a negative temperature there

@@ -224,6 +224,13 @@ TEST(InitialState, ADetachedWedgeStartsWithItsWakeAtRest) {
   EXPECT_FALSE(cfd::start_at_rest(detached));
   EXPECT_EQ(cfd::flux_scheme(detached), "Tadmor");
   EXPECT_EQ(cfd::initial_state(cfd_test::wedge_scene(3.0, 10.0)), "freestream");
+  // Below the rest-start limit (1.58 for air) a detached wedge starts in the
+  // free stream: the shock facing upstream from the gas at rest would run out
+  // through the inlet.
+  const scene::Scene near_sonic = cfd_test::wedge_scene(1.5, 20.0);
+  EXPECT_TRUE(scene::sharp_base_inside_domain(near_sonic));
+  EXPECT_EQ(cfd::initial_state(near_sonic), "freestream");
+  EXPECT_EQ(cfd::initial_state(cfd_test::wedge_scene(1.6, 20.0)), "rest_behind_base");
   EXPECT_EQ(cfd::initial_state(scene::parse_scene(
                 "name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n")),
             "rest");

@@ -119,6 +119,11 @@ std::string initial_velocity_field(const scene::Scene& s, const Mesh2D& mesh) {
   return out + ")";
 }
 
+std::string outlet_velocity(const scene::Scene& s) {
+  if (!scene::sharp_base_inside_domain(s)) return "type zeroGradient;";
+  return "type inletOutlet; inletValue uniform (0 0 0);";
+}
+
 bool subsonic_outflow(const scene::Scene& s) {
   return scene::outflow_can_be_subsonic(s);
 }
@@ -260,6 +265,7 @@ void write_case(const scene::Scene& s, const std::string& mesh_dir, const Mesh2D
       {"T_INF", num(f.T)},
       {"MACH", num(f.mach)},
       {"U_INTERNAL", initial_velocity_field(s, mesh)},
+      {"OUTLET_U", outlet_velocity(s)},
       {"FAR_FIELD_P", far_field_pressure(s)},
       {"MOL_WEIGHT", num(kFoamRR * f.gamma)},
       {"CP", num(1.0 / (f.gamma - 1.0))},

@@ -69,6 +69,14 @@ bool start_at_rest(const scene::Scene& s);
 // sends a bow shock far upstream that takes most of the run to come back.
 std::string initial_state(const scene::Scene& s);
 
+// The outlet's velocity condition. zeroGradient, except behind a sharp base
+// inside the domain, where the wake's recirculation can reach the outlet
+// (one base height behind the base): there zeroGradient let gas flow in
+// without bound (the Mach 3, 36 deg wedge's clustered grid: backflow -0.3 to
+// -3.9 c at the outlet, density 1e10 in the wake by 5.8 flow-throughs, the
+// fallback too) and inletOutlet, which sets no inflow, settled in 6.
+std::string outlet_velocity(const scene::Scene& s);
+
 // 0/U's internalField for the initial state on `mesh`: uniform, or one
 // velocity per cell for rest_behind_base.
 std::string initial_velocity_field(const scene::Scene& s, const Mesh2D& mesh);

@@ -260,3 +260,12 @@ TEST(InitialState, TheVelocityIsTheFreeStreamAheadOfTheBaseAndZeroBehindIt) {
             "nonuniform List<vector> 3\n(\n(3 0 0)\n(3 0 0)\n(0 0 0)\n)");
   EXPECT_EQ(cfd::initial_velocity_field(cfd_test::wedge_scene(3.0, 10.0), mesh), "uniform (3 0 0)");
 }
+
+TEST(InitialState, TheOutletLetsNoGasInBehindASharpBase) {
+  EXPECT_EQ(cfd::outlet_velocity(cfd_test::wedge_scene(3.0, 36.0)),
+            "type inletOutlet; inletValue uniform (0 0 0);");
+  EXPECT_EQ(cfd::outlet_velocity(cfd_test::wedge_scene(3.0, 10.0)), "type zeroGradient;");
+  EXPECT_EQ(cfd::outlet_velocity(scene::parse_scene(
+                "name: t\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n")),
+            "type zeroGradient;");
+}

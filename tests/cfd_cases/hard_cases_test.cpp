@@ -299,6 +299,17 @@ TEST(HardCases, NearSonicDiscSettlesOnAGridClusteredAtItsBowShock) {
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 100, 100));
 }
 
+namespace {
+// A detached wedge's run on the automatic settings: its wake started at rest
+// behind the base, Tadmor's flux, no restart, a measured steady state.
+void expect_settles_on_the_automatic_start(const UniformRun& u) {
+  EXPECT_EQ(u.result.start, "rest_behind_base");
+  EXPECT_EQ(u.result.flux_scheme, "Tadmor");
+  EXPECT_EQ(u.result.fallback, "") << "the automatic settings should need no restart";
+  EXPECT_TRUE(u.result.steady_state_reached);
+}
+}  // namespace
+
 TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   // Mach 2, 30 deg (maximum deflection 22.97 deg). Cut at the base corner,
   // the flow left subsonic and the bow shock crept upstream without end
@@ -311,13 +322,10 @@ TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   const UniformRun u = run_scene_on_uniform_grid(
       "name: wedge_M2_30\nbody: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n"
       "mesh: {h_min: 0.16, h_max: 0.16}\n");
-  EXPECT_EQ(u.result.start, "rest_behind_base");
+  expect_settles_on_the_automatic_start(u);
   EXPECT_EQ(u.result.outflow, "supersonic");
-  EXPECT_EQ(u.result.flux_scheme, "Tadmor");
   EXPECT_NE(scene::read_file(u.dir + "/case/system/fvSchemes").find("fluxScheme      Tadmor;"),
             std::string::npos);
-  EXPECT_EQ(u.result.fallback, "") << "the automatic flux should need no restart";
-  EXPECT_TRUE(u.result.steady_state_reached);
   const auto row = last_history_row(u.result.history_csv);
   EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength);
   const double standoff = -row.at("shock_x");  // apex at x = 0, wedge length 1
@@ -339,10 +347,7 @@ TEST(HardCases, DetachedWedgeAtMach3StartsWithItsWakeAtRest) {
   const UniformRun u = run_scene_on_uniform_grid(
       "name: wedge_M3_36\nbody: {kind: wedge, angle_deg: 36}\nfreestream: {mach: 3}\n"
       "mesh: {h_min: 0.08, h_max: 0.08}\n");
-  EXPECT_EQ(u.result.start, "rest_behind_base");
-  EXPECT_EQ(u.result.flux_scheme, "Tadmor");
-  EXPECT_EQ(u.result.fallback, "") << "the automatic start should need no restart";
-  EXPECT_TRUE(u.result.steady_state_reached);
+  expect_settles_on_the_automatic_start(u);
   expect_finite_positive(cfd::resample_to_lattice(u.scene, u.dir + "/case", 80, 80));
 
   scene::Scene freestream = u.scene;

@@ -80,12 +80,17 @@ constexpr double kRestStartTadmorMach = 4.5;
 bool attached_wedge(const scene::Scene& s) {
   return scene::attached_shock_beta(s).has_value();
 }
+
+// Whether gas at rest inside the domain may meet the free stream: below this
+// limit the shock facing upstream between them runs out through the inlet.
+bool above_rest_start_limit(const scene::Scene& s) {
+  return s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
+}
 }  // namespace
 
 bool start_at_rest(const scene::Scene& s) {
   if (s.cfd.start != "auto") return s.cfd.start == "rest";
-  return s.body && scene::starts_at_rest(*s.body) &&
-         s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma);
+  return s.body && scene::starts_at_rest(*s.body) && above_rest_start_limit(s);
 }
 
 std::string initial_state(const scene::Scene& s) {
@@ -101,8 +106,7 @@ std::string initial_state(const scene::Scene& s) {
   // runs out through the inlet below the rest-start limit, as in a start at
   // rest (the Mach 1.5, 20 deg wedge: 2.7 L ahead and still going at 10
   // flow-throughs, against 0.36 L steady from the free stream).
-  if (s.cfd.start == "auto" && scene::sharp_base_inside_domain(s) &&
-      s.freestream.mach >= scene::rest_start_min_mach(s.freestream.gamma))
+  if (s.cfd.start == "auto" && scene::sharp_base_inside_domain(s) && above_rest_start_limit(s))
     return "rest_behind_base";
   return "freestream";
 }
@@ -113,9 +117,9 @@ std::string initial_velocity_field(const scene::Scene& s, const Mesh2D& mesh) {
   if (state == "rest") return "uniform (0 0 0)";
   if (state == "freestream") return "uniform (" + u + " 0 0)";
   const double x_base = scene::widest_station_x(s);
+  const std::string ahead = "(" + u + " 0 0)\n", behind = "(0 0 0)\n";
   std::string out = fmt::format("nonuniform List<vector> {}\n(\n", mesh.cells());
-  for (const scene::Vec2& c : mesh.cell_centre)
-    out += c.x > x_base ? "(0 0 0)\n" : "(" + u + " 0 0)\n";
+  for (const scene::Vec2& c : mesh.cell_centre) out += c.x > x_base ? behind : ahead;
   return out + ")";
 }
 

@@ -181,6 +181,7 @@ StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationT
   const auto m = run_at(run.scene, e, run.scene.granular.seed, dir, o.np);
   StationErrors st = station_errors(dir + "/shockfit/shock.csv", run.gas_csv);
   st.body = run.scene.name;
+  st.mach = run.scene.freestream.mach;
   st.cpu_seconds = m.cpu + run.grid_cpu_seconds;
   return st;
 }

@@ -124,6 +124,7 @@ StationErrors run_station_errors(const std::string& run_dir) {
   const BowTrainingRun r = bow_training_run(run_dir);
   StationErrors e = station_errors(run_dir + "/shockfit/shock.csv", r.gas_csv);
   e.body = r.scene.name;
+  e.mach = r.scene.freestream.mach;
   e.cpu_seconds = r.predictor_cpu_seconds + r.grid_cpu_seconds;
   return e;
 }
@@ -137,6 +138,7 @@ BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies) {
     ss += b.rms * b.rms;
     w.cpu_seconds += b.cpu_seconds;
     w.bodies.push_back(b.body);
+    w.machs.push_back(b.mach);
     w.stations += static_cast<int>(b.relative.size());
   }
   w.relative_rms = std::sqrt(ss / static_cast<double>(bodies.size()));

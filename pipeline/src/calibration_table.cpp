@@ -195,6 +195,14 @@ CalibrationTable read_calibration(const std::string& path) {
       if (!(std::isfinite(w.relative_rms) && w.relative_rms >= 0))
         bad(path, b["relative_rms"], "bow_shock.relative_rms", "expected a finite number >= 0");
       if (const auto names = b["bodies"]) w.bodies = names.as<std::vector<std::string>>();
+      if (const auto machs = b["machs"]) {
+        if (!machs.IsSequence() || machs.size() != w.bodies.size())
+          bad(path, machs, "bow_shock.machs", "expected one Mach number per body");
+        w.machs = machs.as<std::vector<double>>();
+        for (const double m : w.machs)
+          if (!(std::isfinite(m) && m > 0))
+            bad(path, machs, "bow_shock.machs", "expected finite Mach numbers > 0");
+      }
       w.stations = b["stations"] ? b["stations"].as<int>() : 0;
       w.cpu_seconds = optional_number(b, "cpu_seconds", kNaN);
       if (const auto shapes = b["shapes"]) {
@@ -252,8 +260,12 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
     e.SetDoublePrecision(kCoefficientDigits);
     e << YAML::Key << "bow_shock" << YAML::Value << YAML::BeginMap << YAML::Key << "relative_rms"
       << YAML::Value << t.bow_shock->relative_rms << YAML::Key << "bodies" << YAML::Value
-      << YAML::Flow << t.bow_shock->bodies << YAML::Key << "stations" << YAML::Value
-      << t.bow_shock->stations;
+      << YAML::Flow << t.bow_shock->bodies;
+    if (!t.bow_shock->machs.empty() &&
+        std::all_of(t.bow_shock->machs.begin(), t.bow_shock->machs.end(),
+                    [](double m) { return std::isfinite(m); }))
+      e << YAML::Key << "machs" << YAML::Value << YAML::Flow << t.bow_shock->machs;
+    e << YAML::Key << "stations" << YAML::Value << t.bow_shock->stations;
     if (std::isfinite(t.bow_shock->cpu_seconds))
       e << YAML::Key << "cpu_seconds" << YAML::Value << t.bow_shock->cpu_seconds;
     if (const auto& law = t.bow_shock->restitution_law) {
@@ -389,6 +401,12 @@ MachRange training_mach_range(const BowShapeFit& f) {
     r.high = std::max(r.high, p.mach);
   }
   return r;
+}
+
+std::optional<MachRange> training_mach_range(const BowShockScatter& w) {
+  if (w.machs.empty()) return std::nullopt;
+  const auto [lo, hi] = std::minmax_element(w.machs.begin(), w.machs.end());
+  return MachRange{*lo, *hi};
 }
 
 namespace {

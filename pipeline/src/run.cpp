@@ -209,9 +209,22 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // wedge whose granular shock detaches near the maximum deflection borrows
   // the scatter without that charge; its attached twins never use it).
   const bool stands_off = !angle_deg || scene::shock_may_stand_off(s);
+  // That scatter was measured on blunt bodies at a few Mach numbers; beyond
+  // them the band's width is as unmeasured as e(M) is outside its range.
+  const auto bow_range =
+      !shape && stands_off && t.bow_shock ? training_mach_range(*t.bow_shock) : std::nullopt;
+  const bool outside_bow = bow_range && !bow_range->contains(s.freestream.mach);
+  if (outside_bow) {
+    std::snprintf(buf, sizeof buf,
+                  "; WARNING: Mach %g lies outside the Mach numbers %g-%g of the blunt bodies "
+                  "the bow-shock band's scatter was measured on, so this bow shock's error is "
+                  "unmeasured (its band may miss the gas shock)",
+                  s.freestream.mach, bow_range->low, bow_range->high);
+    note += buf;
+  }
   const double cost =
       std::isfinite(bow) && stands_off ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
-  return {note, cost, scatter, bow, outside};
+  return {note, cost, scatter, bow, outside || outside_bow};
 }
 
 nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t seed,

@@ -76,6 +76,8 @@ TEST(BowShockScatter, OtherStationsOrTooFewAreInputErrors) {
 TEST(BowShockScatter, EachBodyCountsOnce) {
   pipeline::StationErrors a, b;
   a.body = "a";
+  a.mach = 3.0;
+  b.mach = 6.0;
   a.relative.assign(30, 0.1);
   a.rms = 0.1;
   b.body = "b";
@@ -85,6 +87,7 @@ TEST(BowShockScatter, EachBodyCountsOnce) {
   EXPECT_NEAR(w.relative_rms, std::sqrt((0.01 + 0.09) / 2.0), 1e-12);
   EXPECT_EQ(w.stations, 33);
   EXPECT_EQ(w.bodies, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(w.machs, (std::vector<double>{3.0, 6.0}));
 }
 
 TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
@@ -134,6 +137,66 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   pipeline::write_calibration(t, path);
   scene::write_file_atomic(path, scene::read_file(path) + "bow_shock: {relative_rms: -0.1}\n");
   EXPECT_THROW(pipeline::read_calibration(path), scene::InputError);
+}
+
+// The scatter is measured on blunt bodies at a few Mach numbers: a bow shock
+// beyond them gets the same warning as an e(M) outside its training range,
+// an attached wedge (whose band is the angle's) none.
+TEST(BowShockScatter, BeyondItsBodiesMachNumbersIsSaid) {
+  const auto d = fresh("mach_range");
+  const std::string path = (d / "calibration.yaml").string();
+  fs::copy_file(kSource + "/pipeline/calibration.yaml", path);
+  auto t = pipeline::read_calibration(path);
+  t.bow_shock.emplace();
+  t.bow_shock->relative_rms = 0.17;
+  t.bow_shock->bodies = {"disc_M3", "apollo_M3.5", "disc_M5"};
+  t.bow_shock->machs = {3.0, 3.5, 5.0};
+  pipeline::write_calibration(t, path);
+  const auto back = pipeline::read_calibration(path);
+  ASSERT_TRUE(back.bow_shock.has_value());
+  EXPECT_EQ(back.bow_shock->machs, t.bow_shock->machs);
+  const auto range = pipeline::training_mach_range(*back.bow_shock);
+  ASSERT_TRUE(range.has_value());
+  EXPECT_EQ(range->low, 3.0);
+  EXPECT_EQ(range->high, 5.0);
+
+  const auto applied = [&](const char* text) {
+    auto s = scene::parse_scene(text);
+    return pipeline::apply_calibration(s, path);
+  };
+  // Inside the wedge table's Mach range 2.5-6 but below the blunt bodies'.
+  const auto slow = applied("body: {kind: disc, radius: 2}\nfreestream: {mach: 2.5}\n");
+  EXPECT_TRUE(slow.outside_training_mach);
+  EXPECT_NE(slow.note.find("blunt bodies the bow-shock band's scatter was measured on"),
+            std::string::npos)
+      << slow.note;
+  const auto inside = applied("body: {kind: disc, radius: 2}\nfreestream: {mach: 4}\n");
+  EXPECT_FALSE(inside.outside_training_mach) << inside.note;
+  EXPECT_EQ(inside.note.find("WARNING"), std::string::npos) << inside.note;
+  // A detached wedge borrows the scatter, and its warning.
+  EXPECT_TRUE(applied("body: {kind: wedge, angle_deg: 40}\nfreestream: {mach: 2.6}\n")
+                  .outside_training_mach);
+  // An attached wedge's band is the angle's: no bow warning at the same Mach number.
+  EXPECT_FALSE(applied("body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 2.6}\n")
+                   .outside_training_mach);
+
+  // A table that does not record its bodies' Mach numbers checks no range.
+  t.bow_shock->machs.clear();
+  pipeline::write_calibration(t, path);
+  EXPECT_FALSE(
+      applied("body: {kind: disc, radius: 2}\nfreestream: {mach: 2.6}\n").outside_training_mach);
+  // One Mach number per body, or the table is refused naming the key.
+  t.bow_shock.reset();
+  pipeline::write_calibration(t, path);
+  scene::write_file_atomic(
+      path,
+      scene::read_file(path) + "bow_shock: {relative_rms: 0.1, bodies: [a, b], machs: [3]}\n");
+  try {
+    pipeline::read_calibration(path);
+    FAIL() << "a bow block with too few Mach numbers was read";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bow_shock.machs"), std::string::npos) << e.what();
+  }
 }
 
 TEST(BowShockScatter, CaseStudiesAreNeverTrainingPoints) {

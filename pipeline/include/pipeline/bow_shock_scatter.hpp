@@ -15,6 +15,7 @@ namespace pipeline {
 
 struct StationErrors {
   std::string body;              // the scene's name
+  double mach = scene::kNaN;     // its free-stream Mach number
   std::vector<double> relative;  // (d_granular - d_gas) / d_gas per station both accepted
   double rms = scene::kNaN;      // of `relative`
   double mean = scene::kNaN;

@@ -82,7 +82,10 @@ struct BowShapeFit {
 struct BowShockScatter {
   double relative_rms = scene::kNaN;
   std::vector<std::string> bodies;  // the training scenes' names
-  int stations = 0;                 // stations compared, all bodies
+  // Their free-stream Mach numbers, in the same order; empty in tables written
+  // before they were recorded (no range can then be checked).
+  std::vector<double> machs;
+  int stations = 0;  // stations compared, all bodies
   // What the training runs cost (their predictors and the uniform grids
   // compared with); NaN when not recorded.
   double cpu_seconds = scene::kNaN;
@@ -162,5 +165,8 @@ std::optional<MachRange> training_mach_range(const CalibrationTable& t);
 std::optional<MachRange> training_angle_range(const CalibrationTable& t);
 // The same for a shape's fit: its training bodies' Mach numbers.
 MachRange training_mach_range(const BowShapeFit& f);
+// The same for the bow block's scatter: the Mach numbers of the blunt bodies
+// it was measured on; nullopt where the block does not record them.
+std::optional<MachRange> training_mach_range(const BowShockScatter& w);
 
 }  // namespace pipeline

@@ -49,12 +49,15 @@ constexpr double kCpuPerCase = 0.35;
 constexpr double kMeshCpuPerCell = 7.5e-5;
 constexpr double kMeshCpuPerGrid = 0.7;
 // The granular predictor's cost at the default particle count: the mean
-// over the case studies (3.5 CPU s on wedge M3/10 to 18 on Apollo M5). It
-// grows as particles^1.5: collisions per flow-through scale with the disks
-// times the flow-through time, which grows with the domain's length in
-// diameters, sqrt(particles) (wedge M3/10 at 4x the default particles: 41.6
-// against 4.7 CPU s, 4^1.57).
-constexpr double kGranularPredictorCpu = 8.0;
+// over the case studies at 4 averaged flow-through times (3.5 CPU s on wedge
+// M3/10 to 18 on Apollo M5) after a detected warm-up of typically 1.75 (the
+// median over 48 unseen wedges), per simulated flow-through time. It grows
+// as particles^1.5: collisions per flow-through scale with the disks times
+// the flow-through time, which grows with the domain's length in diameters,
+// sqrt(particles) (wedge M3/10 at 4x the default particles: 41.6 against 4.7
+// CPU s, 4^1.57).
+constexpr double kTypicalWarmupFlowThroughs = 1.75;
+constexpr double kGranularPredictorCpuPerFlowThrough = 8.0 / (kTypicalWarmupFlowThroughs + 4.0);
 constexpr double kGranularCpuParticleExponent = 1.5;
 
 // Every grid's cells are meshgen's own estimate (meshgen::check_mesh_request:
@@ -147,8 +150,12 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
 // (InputError naming the key) before anything runs.
 double granular_predictor_cpu(const scene::Scene& s) {
   const granular::FlowSetup f = granular::make_flow_setup(s);
+  const scene::GranularParams& g = s.granular;
+  const bool target = g.target_half_width || g.target_from_mesh;
+  const double flow_throughs =
+      g.warmup.value_or(kTypicalWarmupFlowThroughs) + (target ? g.max_averaging : g.averaging);
   const double cpu =
-      kGranularPredictorCpu *
+      kGranularPredictorCpuPerFlowThrough * flow_throughs *
       std::pow(f.expected_particles / scene::kDefaultFlowParticles, kGranularCpuParticleExponent);
   return s.granular.cpu_budget ? std::min(cpu, *s.granular.cpu_budget) : cpu;
 }

@@ -212,6 +212,8 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     (void)g;
     (void)scene_domain(sc);  // validates an override against the body
     if (!end_time_given && outflow_can_be_subsonic(sc)) sc.cfd.end_time = kSubsonicOutflowEndTime;
+    if (!sc.granular.averaging_given && attached_shock_beta(sc))
+      sc.granular.averaging = kAttachedShockAveraging;
   }
   return sc;
 }

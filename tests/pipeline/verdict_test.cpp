@@ -339,9 +339,9 @@ TEST(GridRuns, AShockOfTheOtherKindIsNoShockValue) {
 }
 
 // The granular stage's estimate follows its particle count (CPU ~ particles^1.5:
-// measured 8.7x for 4x the particles on wedge M3/10), is capped by the stage's
-// own granular.cpu_budget, and a count beyond what memory holds is refused by
-// the estimate itself, before anything runs, naming the key.
+// measured 8.7x for 4x the particles on wedge M3/10) and its flow-through times, is capped by the
+// stage's own granular.cpu_budget, and a count beyond what memory holds is refused by the estimate
+// itself, before anything runs, naming the key.
 TEST(CostEstimate, PredictorFollowsTheParticleCountAndRefusesAnAbsurdOne) {
   const std::string wedge =
       "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n";
@@ -352,6 +352,12 @@ TEST(CostEstimate, PredictorFollowsTheParticleCountAndRefusesAnAbsurdOne) {
                            .predictor_cpu_seconds;
   constexpr double kRelTolerance = 1e-9;
   EXPECT_NEAR(at_4x / at_default, 8.0, 8.0 * kRelTolerance);
+  // ... and the flow-through times it simulates: a warm-up of 1.75 and the
+  // averaging (16 by default on an attached shock).
+  const double at_4 =
+      pipeline::estimate_run(scene::parse_scene(wedge + "granular: {averaging: 4}\n"), "granular")
+          .predictor_cpu_seconds;
+  EXPECT_NEAR(at_default / at_4, (1.75 + 16.0) / (1.75 + 4.0), kRelTolerance);
   const double capped =
       pipeline::estimate_run(
           scene::parse_scene(wedge + "granular: {particles: 36800, cpu_budget: 20}\n"), "granular")

@@ -63,6 +63,26 @@ TEST(Parse, BandAnisotropyDefaultsToStripsOnlyOnAnAttachedShock) {
       4.0);
 }
 
+// An attached shock's angle averages kAttachedShockAveraging flow-through
+// times unless the scene says otherwise; bow shocks and boxes keep 4.
+TEST(Parse, AveragingDefaultsToLongerOnlyOnAnAttachedShock) {
+  EXPECT_DOUBLE_EQ(parse_scene(kMinimal, "w.yaml").granular.averaging,
+                   scene::kAttachedShockAveraging);
+  EXPECT_DOUBLE_EQ(
+      parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n", "d.yaml")
+          .granular.averaging,
+      4.0);
+  EXPECT_DOUBLE_EQ(parse_scene("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n", "c.yaml")
+                       .granular.averaging,
+                   4.0);
+  EXPECT_DOUBLE_EQ(parse_scene(std::string(kMinimal) + "granular: {averaging: 4}\n", "w4.yaml")
+                       .granular.averaging,
+                   4.0);
+  // The resolved scene says what ran.
+  const auto again = parse_scene(scene::to_yaml(parse_scene(kMinimal, "w.yaml")), "echo.yaml");
+  EXPECT_DOUBLE_EQ(again.granular.averaging, scene::kAttachedShockAveraging);
+}
+
 TEST(Parse, ResolvedYamlRoundTrips) {
   const auto s = parse_scene(kMinimal, "w.yaml");
   const auto again = parse_scene(scene::to_yaml(s), "echo.yaml");

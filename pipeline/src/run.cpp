@@ -44,7 +44,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-
 Reference reference_for(const scene::Scene& s) {
   Reference r;
   r.pressure_ratio = kNaN;
@@ -58,8 +57,8 @@ Reference reference_for(const scene::Scene& s) {
   r.quantity = "standoff";
   if (scene::correlation_is_exact_shape(*s.body)) {
     r.source = "Billig's correlation for cylinders (a comparison, not an exact reference)";
-    r.value = scene::billig_standoff_cylinder(s.freestream.mach) * scene::correlation_nose_radius(*s.body) /
-              scene::body_length(*s.body);
+    r.value = scene::billig_standoff_cylinder(s.freestream.mach) *
+              scene::correlation_nose_radius(*s.body) / scene::body_length(*s.body);
   } else {
     r.source = "finest uniform grid (a comparison, not an exact reference)";
     r.value = kNaN;  // filled from the finest uniform run
@@ -74,8 +73,11 @@ const GridRun* at_level(const std::vector<GridRun>& fam, double level) {
 }
 
 nlohmann::json convergence_json(const GridConvergence& g) {
-  return {{"monotone", g.monotone}, {"observed_order", json_number(g.order)}, {"extrapolated", json_number(g.extrapolated)},
-          {"gci_fine", json_number(g.gci_fine)}, {"note", g.note}};
+  return {{"monotone", g.monotone},
+          {"observed_order", json_number(g.order)},
+          {"extrapolated", json_number(g.extrapolated)},
+          {"gci_fine", json_number(g.gci_fine)},
+          {"note", g.note}};
 }
 
 // Bodies without an exact field solution: one uniform grid finer than every
@@ -83,10 +85,11 @@ nlohmann::json convergence_json(const GridConvergence& g) {
 // standoff, drag and stagnation pressure from it and the uniform grids two
 // and four times coarser (grid_runs.hpp: reference_grid_level). Null when
 // the scene needs none.
-nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids, const PrimaryError& primary,
-                               const std::vector<GridRun>& uniform) {
+nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids,
+                               const PrimaryError& primary, const std::vector<GridRun>& uniform) {
   const auto& p = s.pipeline;
-  if (primary.name == "l1_density" || !p.reference_grid || !p.cfd || p.levels.empty()) return nullptr;
+  if (primary.name == "l1_density" || !p.reference_grid || !p.cfd || p.levels.empty())
+    return nullptr;
   const double level = reference_grid_level(p);
   constexpr double kRatio = 2.0;
   const GridRun* r2 = at_level(uniform, level * kRatio);
@@ -101,10 +104,11 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids, const P
   }
   j["triple"] = {ref.level, r2->level, r3->level};
   j["standoff"] = convergence_json(richardson(ref.value, r2->value, r3->value, kRatio));
-  j["drag_coefficient"] =
-      convergence_json(richardson(ref.drag_coefficient, r2->drag_coefficient, r3->drag_coefficient, kRatio));
-  j["stagnation_pressure_ratio"] = convergence_json(
-      richardson(ref.stagnation_pressure_ratio, r2->stagnation_pressure_ratio, r3->stagnation_pressure_ratio, kRatio));
+  j["drag_coefficient"] = convergence_json(
+      richardson(ref.drag_coefficient, r2->drag_coefficient, r3->drag_coefficient, kRatio));
+  j["stagnation_pressure_ratio"] =
+      convergence_json(richardson(ref.stagnation_pressure_ratio, r2->stagnation_pressure_ratio,
+                                  r3->stagnation_pressure_ratio, kRatio));
   return j;
 }
 
@@ -118,8 +122,8 @@ std::string calibration_path(const scene::Scene& s, const std::string& table_pat
 std::vector<VerdictRun> verdict_runs(const std::vector<GridRun>& runs) {
   std::vector<VerdictRun> out;
   for (const auto& r : runs)
-    out.push_back({r.family, r.level, r.cells, r.steps, r.cfd_cpu_seconds, r.mesh_cpu_seconds, r.primary_error,
-                   r.primary_error_ci, r.steady});
+    out.push_back({r.family, r.level, r.cells, r.steps, r.cfd_cpu_seconds, r.mesh_cpu_seconds,
+                   r.primary_error, r.primary_error_ci, r.steady});
   return out;
 }
 
@@ -136,7 +140,28 @@ std::string clustered_family(const std::string& predictor) {
   return predictor == "granular" ? "clustered" : "clustered-" + predictor;
 }
 
-std::string builtin_calibration_path() { return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml"; }
+std::string builtin_calibration_path() {
+  return std::string(PIPELINE_SOURCE_DIR) + "/calibration.yaml";
+}
+
+namespace {
+constexpr const char* kUnmeasuredError =
+    "this prediction's error is unmeasured (its band may miss the gas shock)";
+
+std::string shortest(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// "; WARNING: <subject> lies outside <range_name> <low>-<high><unit>, so <consequence>": one
+// form for every range a calibration was measured over.
+std::string outside_warning(const std::string& subject, const char* range_name, MachRange r,
+                            const char* unit, const std::string& consequence) {
+  return "; WARNING: " + subject + " lies outside " + range_name + " " + shortest(r.low) + "-" +
+         shortest(r.high) + unit + ", so " + consequence;
+}
+}  // namespace
 
 AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return {};
@@ -151,7 +176,8 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // wedges that the report states.
   const std::optional<double> angle_deg = scene::calibration_angle_deg(*s.body);
   const std::string path = calibration_path(s, table_path);
-  if (!fs::exists(path)) return {"no calibration table at " + path + "; restitution left at its default"};
+  if (!fs::exists(path))
+    return {"no calibration table at " + path + "; restitution left at its default"};
   const auto t = read_calibration(path);
   // A blunt shape with its own fit takes it: the wedge e(M) misplaces bow shocks.
   const auto shape_name = angle_deg ? std::nullopt : scene::bow_shape_class(*s.body);
@@ -181,29 +207,19 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const auto range =
       shape ? std::optional<MachRange>(training_mach_range(*shape)) : training_mach_range(t);
   const bool outside = range && !range->contains(s.freestream.mach);
-  if (outside) {
-    std::snprintf(buf, sizeof buf,
-                  "; WARNING: Mach %g lies outside the table's training range %g-%g, so e(M) is "
-                  "extrapolated%s and this prediction's error is unmeasured (its band may miss the "
-                  "gas shock)",
-                  s.freestream.mach, range->low, range->high,
-                  *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
-    note += buf;
-  }
+  const std::string held = *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "";
+  if (outside)
+    note += outside_warning("Mach " + shortest(s.freestream.mach), "the table's training range",
+                            *range, "", "e(M) is extrapolated" + held + " and " + kUnmeasuredError);
   // A fit in the deflection extrapolates beyond the training wedges too
   // (1/theta grows fast below them).
   const auto angles = training_angle_range(t);
   const RestitutionFit* chosen = t.model ? t.fit(*t.model) : nullptr;
   if (!shape && angle_deg && angles && chosen && uses_angle(chosen->model) &&
-      !angles->contains(*angle_deg)) {
-    std::snprintf(
-        buf, sizeof buf,
-        "; WARNING: the %g deg deflection lies outside the table's training range %g-%g deg, so "
-        "e(M, theta) is extrapolated%s and this prediction's error is unmeasured",
-        *angle_deg, angles->low, angles->high,
-        *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "");
-    note += buf;
-  }
+      !angles->contains(*angle_deg))
+    note += outside_warning("the " + shortest(*angle_deg) + " deg deflection",
+                            "the table's training range", *angles, " deg",
+                            "e(M, theta) is extrapolated" + held + " and " + kUnmeasuredError);
   // A bow shock's prediction owes its band to the blunt training runs too:
   // charged to the bodies whose shock stands off in the gas (an attached
   // wedge whose granular shock detaches near the maximum deflection borrows
@@ -214,14 +230,11 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const auto bow_range =
       !shape && stands_off && t.bow_shock ? training_mach_range(*t.bow_shock) : std::nullopt;
   const bool outside_bow = bow_range && !bow_range->contains(s.freestream.mach);
-  if (outside_bow) {
-    std::snprintf(buf, sizeof buf,
-                  "; WARNING: Mach %g lies outside the Mach numbers %g-%g of the blunt bodies "
-                  "the bow-shock band's scatter was measured on, so this bow shock's error is "
-                  "unmeasured (its band may miss the gas shock)",
-                  s.freestream.mach, bow_range->low, bow_range->high);
-    note += buf;
-  }
+  if (outside_bow)
+    note += outside_warning(
+        "Mach " + shortest(s.freestream.mach),
+        "the Mach numbers of the blunt bodies the bow-shock band's scatter was measured on,",
+        *bow_range, "", kUnmeasuredError);
   const double cost =
       std::isfinite(bow) && stands_off ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
   return {note, cost, scatter, bow, outside || outside_bow};
@@ -239,7 +252,8 @@ nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t 
   return r;
 }
 
-nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force) {
+nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np,
+                              bool force) {
   StageCache cache(out_dir);
   // A target taken from the mesh moves with the mesh and the levels.
   const granular::PrecisionGoal goal = precision_goal(s);
@@ -297,18 +311,20 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
   out["granular_wall_seconds"] = gsum.value("wall_seconds", kNaN);
   out["granular_cpu_seconds"] = number_or_nan(gsum, "stage_cpu_seconds");
   out["shockfit_cpu_seconds"] = number_or_nan(ssum, "stage_cpu_seconds");
-  out["predictor_cpu_seconds"] = number_or_nan(gsum, "stage_cpu_seconds") + number_or_nan(ssum, "stage_cpu_seconds");
+  out["predictor_cpu_seconds"] =
+      number_or_nan(gsum, "stage_cpu_seconds") + number_or_nan(ssum, "stage_cpu_seconds");
   out["granular"] = gsum;
   out["fingerprint"] = fp_s;
   return out;
 }
 
-Prediction predict_shock(const scene::Scene& s, const std::string& predictor, const std::string& out_dir, int np,
-                         bool force, double calibration_angle_scatter_deg,
+Prediction predict_shock(const scene::Scene& s, const std::string& predictor,
+                         const std::string& out_dir, int np, bool force,
+                         double calibration_angle_scatter_deg,
                          double calibration_bow_shock_relative_rms) {
   const auto p = make_predictor(predictor);
-  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force, calibration_angle_scatter_deg,
-                     calibration_bow_shock_relative_rms});
+  return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force,
+                     calibration_angle_scatter_deg, calibration_bow_shock_relative_rms});
 }
 
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
@@ -333,16 +349,18 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   GridRunner grids(s, o.out_dir, o.np, o.force, step);
 
   // The prediction: where the clustered grids put their fine band.
-  const bool force_prediction = o.force.count("granular") || o.force.count("shockfit") || o.force.count("all");
-  const Prediction pred = predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np,
-                                              force_prediction, calib.angle_scatter_deg,
-                                              calib.bow_shock_relative_rms});
+  const bool force_prediction =
+      o.force.count("granular") || o.force.count("shockfit") || o.force.count("all");
+  const Prediction pred =
+      predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np,
+                          force_prediction, calib.angle_scatter_deg, calib.bow_shock_relative_rms});
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");
-  const ShockInput shock{pred.fingerprint, pred.shock_csv,
-                         !pred.size_fields.empty() || (pred.kind != scene::ShockKind::none && pred.curve.size() >= 2),
-                         pred.size_fields};
+  const ShockInput shock{
+      pred.fingerprint, pred.shock_csv,
+      !pred.size_fields.empty() || (pred.kind != scene::ShockKind::none && pred.curve.size() >= 2),
+      pred.size_fields};
 
   // Both families, coarse to fine, interleaved level by level: a change in
   // the machine's load during the run then falls on both families alike.
@@ -358,7 +376,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
         true);
   for (const double level : levels) {
     fam_u.push_back(grids.run("uniform", level, {}, primary));
-    if (shock.has_shock) fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
+    if (shock.has_shock)
+      fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
   }
   const nlohmann::json convergence = reference_study(s, grids, primary, fam_u);
 
@@ -368,10 +387,12 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   for (auto& r : fam_c) score(r, ref);
   for (auto& r : fam_u) score(r, ref);
   const Comparison cmp = compare(fam_c, fam_u, pred.wall_seconds);
-  Verdict verdict = make_verdict(primary, verdict_runs(fam_c), verdict_runs(fam_u), pred.cpu_seconds);
+  Verdict verdict =
+      make_verdict(primary, verdict_runs(fam_c), verdict_runs(fam_u), pred.cpu_seconds);
   charge_calibration(verdict, verdict_runs(fam_c), verdict_runs(fam_u), calib_cpu,
                      static_cast<int>(case_study_scenes().size()));
-  ReportInputs in{s, o.out_dir, pred, ref, cmp, verdict, calib_note, seconds_since(t_start), convergence};
+  ReportInputs in{
+      s, o.out_dir, pred, ref, cmp, verdict, calib_note, seconds_since(t_start), convergence};
   nlohmann::json summary = make_summary(in);
   summary["calibration_outside_training_mach"] = calib.outside_training_mach;
   const std::string suffix = o.output_suffix.value_or("");

@@ -45,6 +45,18 @@ void write_stations(const std::string& path, const std::vector<double>& distance
   }
   scene::write_shock_csv(path, rows);
 }
+
+// The shipped table copied to `path`, its bow block replaced by one with
+// these figures (no shapes); the caller edits it further and writes it.
+pipeline::CalibrationTable shipped_table_with_bow_block(const std::string& path, double rms,
+                                                        const std::vector<std::string>& bodies) {
+  fs::copy_file(kSource + "/pipeline/calibration.yaml", path);
+  auto t = pipeline::read_calibration(path);
+  t.bow_shock.emplace();
+  t.bow_shock->relative_rms = rms;
+  t.bow_shock->bodies = bodies;
+  return t;
+}
 }  // namespace
 
 TEST(BowShockScatter, RelativeErrorsOnStationsAcceptedInBoth) {
@@ -91,13 +103,8 @@ TEST(BowShockScatter, EachBodyCountsOnce) {
 }
 
 TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
-  const auto d = fresh("table");
-  const std::string path = (d / "calibration.yaml").string();
-  fs::copy_file(kSource + "/pipeline/calibration.yaml", path);
-  auto t = pipeline::read_calibration(path);
-  t.bow_shock.emplace();
-  t.bow_shock->relative_rms = 0.1234567890123;
-  t.bow_shock->bodies = {"disc_M3", "disc_M6"};
+  const std::string path = (fresh("table") / "calibration.yaml").string();
+  auto t = shipped_table_with_bow_block(path, 0.1234567890123, {"disc_M3", "disc_M6"});
   t.bow_shock->stations = 67;
   t.bow_shock->cpu_seconds = 500;
   pipeline::write_calibration(t, path);
@@ -114,8 +121,7 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
   auto wedge = scene::parse_scene("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 3.5}\n");
   EXPECT_EQ(pipeline::apply_calibration(wedge, path).bow_shock_relative_rms, 0.1234567890123);
   // A wedge beyond its maximum deflection stands its shock off like a blunt body.
-  auto detached =
-      scene::parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n");
+  auto detached = scene::parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n");
   EXPECT_EQ(pipeline::apply_calibration(detached, path).bow_shock_relative_rms, 0.1234567890123);
   // The blunt training runs are charged to the bodies whose shock stands off in the gas only.
   const auto cost = [&](const char* text) {
@@ -143,13 +149,8 @@ TEST(BowShockScatter, TableKeepsItAndBluntBodiesGetIt) {
 // beyond them gets the same warning as an e(M) outside its training range,
 // an attached wedge (whose band is the angle's) none.
 TEST(BowShockScatter, BeyondItsBodiesMachNumbersIsSaid) {
-  const auto d = fresh("mach_range");
-  const std::string path = (d / "calibration.yaml").string();
-  fs::copy_file(kSource + "/pipeline/calibration.yaml", path);
-  auto t = pipeline::read_calibration(path);
-  t.bow_shock.emplace();
-  t.bow_shock->relative_rms = 0.17;
-  t.bow_shock->bodies = {"disc_M3", "apollo_M3.5", "disc_M5"};
+  const std::string path = (fresh("mach_range") / "calibration.yaml").string();
+  auto t = shipped_table_with_bow_block(path, 0.17, {"disc_M3", "apollo_M3.5", "disc_M5"});
   t.bow_shock->machs = {3.0, 3.5, 5.0};
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);

@@ -20,7 +20,7 @@ inline constexpr double kDefaultFlowParticles = 9200.0;
 // Averaging longer moves no mean (16 against 4: -0.02 deg, 95% -0.13 to
 // +0.09), so tables fitted at 4 serve. Bow shocks keep 4: their
 // calibrations and bands were measured there.
-constexpr double kAttachedShockAveraging = 16.0;
+inline constexpr double kAttachedShockAveraging = 16.0;
 
 struct GranularParams {
   // Box scenes: exactly as ../shared/contract.md.

@@ -10,6 +10,7 @@
 #include "granular/flow_setup.hpp"
 #include "meshgen/mesh.hpp"
 #include "pipeline/grid_runs.hpp"
+#include "pipeline/precision_goal.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/predictors.hpp"
 #include "pipeline/run.hpp"
@@ -151,9 +152,8 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
 double granular_predictor_cpu(const scene::Scene& s) {
   const granular::FlowSetup f = granular::make_flow_setup(s);
   const scene::GranularParams& g = s.granular;
-  const bool target = g.target_half_width || g.target_from_mesh;
-  const double flow_throughs =
-      g.warmup.value_or(kTypicalWarmupFlowThroughs) + (target ? g.max_averaging : g.averaging);
+  const double flow_throughs = g.warmup.value_or(kTypicalWarmupFlowThroughs) +
+                               (precision_target(s) ? g.max_averaging : g.averaging);
   const double cpu =
       kGranularPredictorCpuPerFlowThrough * flow_throughs *
       std::pow(f.expected_particles / scene::kDefaultFlowParticles, kGranularCpuParticleExponent);

@@ -71,7 +71,6 @@ GranularParams parse_granular(Section& s) {
   p.lattice_nx = static_cast<int>(s.integer("lattice_nx", p.lattice_nx, 2, 100000));
   p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
   p.warmup = s.opt_number("warmup", {0.0, kMaxFlowThroughs});
-  p.averaging_given = s.has("averaging");
   p.averaging = s.number("averaging", p.averaging, {0.0, kMaxFlowThroughs, true, false});
   parse_precision_target(s, p);
   p.cpu_budget = s.opt_number("cpu_budget", positive());

@@ -59,7 +59,6 @@ struct GranularParams {
   // Flow-through times averaged (no precision target). Unset: 4, or
   // kAttachedShockAveraging where the gas shock is attached (scene.cpp).
   double averaging = 4.0;
-  bool averaging_given = false;
   // Precision on demand (docs/granular_flow.md): average until the shock's
   // 95% position half-width (body lengths) is at most the target, the CPU
   // budget is spent, or max_averaging flow-through times are averaged. The

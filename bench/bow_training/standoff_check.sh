@@ -12,7 +12,7 @@ set -euo pipefail
 scene=$1; gas=$2; table=$3; out=$4; shift 4
 bin=${BIN:-build/bin}
 mkdir -p "$out"
-value() { grep -o "\"$2\": [^,}]*" "$1" | head -1 | sed 's/.*: //'; }
+source "$(dirname "$0")/../json_value.sh"
 # Written aside and moved in at the end: a stopped or failed rerun leaves the
 # last finished runs.txt / summary.txt in place.
 : > "$out/runs.txt.part"

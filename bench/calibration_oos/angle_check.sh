@@ -19,7 +19,7 @@ set -euo pipefail
 table=$1; out=$2; shift 2
 bin=${BIN:-build/bin}
 mkdir -p "$out"
-value() { grep -o "\"$2\": [^,}]*" "$1" | head -1 | sed 's/.*: //'; }
+source "$(dirname "$0")/../json_value.sh"
 # mach angle class: 1 inside the training ranges (Mach 2.5-6, 8-20 deg),
 # 2 a case study, 0 outside the training ranges
 default_wedges="2.8 11 1

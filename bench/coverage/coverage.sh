@@ -14,7 +14,7 @@ template=$1; out=$2; shift 2
 seeds=("$@"); [ ${#seeds[@]} -gt 0 ] || seeds=(1 3 5 7 9 11 13 15 17 19 21 23)
 bin=${BIN:-build/bin}
 mkdir -p "$out"
-value() { grep -o "\"$2\": [^,}]*" "$1" | head -1 | sed 's/.*: //'; }
+source "$(dirname "$0")/../json_value.sh"
 for s in "${seeds[@]}"; do
   d="$out/s$s"; mkdir -p "$d"
   sed "s/SEED/$s/" "$template" > "$d/scene.yaml"

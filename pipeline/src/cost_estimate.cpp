@@ -59,6 +59,9 @@ constexpr double kMeshCpuPerGrid = 0.7;
 // CPU s, 4^1.57).
 constexpr double kTypicalWarmupFlowThroughs = 1.75;
 constexpr double kGranularPredictorCpuPerFlowThrough = 8.0 / (kTypicalWarmupFlowThroughs + 4.0);
+// Where a band target typically stops: the median over 48 runs on 16 unseen
+// wedges (4.0-14.5; docs/granular_flow.md, "The band target").
+constexpr double kTypicalBandAveraging = 4.25;
 constexpr double kGranularCpuParticleExponent = 1.5;
 
 // Every grid's cells are meshgen's own estimate (meshgen::check_mesh_request:
@@ -152,8 +155,10 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
 double granular_predictor_cpu(const scene::Scene& s) {
   const granular::FlowSetup f = granular::make_flow_setup(s);
   const scene::GranularParams& g = s.granular;
-  const double flow_throughs = g.warmup.value_or(kTypicalWarmupFlowThroughs) +
-                               (precision_target(s) ? g.max_averaging : g.averaging);
+  const double averaging = g.target_from_band    ? kTypicalBandAveraging
+                           : precision_target(s) ? g.max_averaging
+                                                 : g.averaging;
+  const double flow_throughs = g.warmup.value_or(kTypicalWarmupFlowThroughs) + averaging;
   const double cpu =
       kGranularPredictorCpuPerFlowThrough * flow_throughs *
       std::pow(f.expected_particles / scene::kDefaultFlowParticles, kGranularCpuParticleExponent);
@@ -169,8 +174,10 @@ BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
   return {c.angle_scatter_deg, c.bow_shock_relative_rms};
 }
 
-RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
+RunEstimate estimate_run(const scene::Scene& given, const std::string& predictor,
                          const BandScatter& scatter) {
+  scene::Scene s = given;  // averaged as the run will (run_pipeline)
+  if (predictor == "granular") default_to_band_target(s, scatter.angle_deg);
   RunEstimate e;
   for (const double level : s.pipeline.levels)
     e.grids.push_back(grid(s, level_name("uniform", level), level, nullptr));

@@ -7,6 +7,8 @@
 
 #include "json_fields.hpp"
 #include "scene/body.hpp"
+#include "scene/body_traits.hpp"
+#include "scene/errors.hpp"
 #include "scene/units.hpp"
 #include "shockfit/group_interval.hpp"
 
@@ -45,7 +47,78 @@ double shock_position_half_width(const scene::Scene& s, const shockfit::ShockRes
   return attached_reach(s, r) * std::tan(r.shock_angle_ci_deg * scene::kDeg);
 }
 
-granular::PrecisionGoal precision_goal(const scene::Scene& s) {
+namespace {
+
+// shockfit on the fields so far. in_degrees: an attached shock's precision as
+// its angle's half-width (deg), the quantity a band is widened by; else the
+// shock position's half-width (body lengths).
+granular::PrecisionMeasure measure_shock(const scene::Scene& s, const scene::Lattice& fields,
+                                         const std::vector<scene::Lattice>& groups,
+                                         bool in_degrees) {
+  granular::PrecisionMeasure m;
+  shockfit::ShockResult r = shockfit::locate_shock(s, fields);
+  shockfit::apply_group_interval(s, groups, r);
+  const bool attached = r.shock == scene::ShockKind::attached;
+  if (in_degrees) {
+    if (attached && std::isfinite(r.shock_angle_ci_deg) && r.shock_angle_ci_deg > 0) {
+      m.half_width = r.shock_angle_ci_deg;
+      m.value = r.shock_angle_deg;
+      m.value_to_position = 1.0;
+    }
+  } else {
+    m.half_width = shock_position_half_width(s, r);
+    if (r.shock == scene::ShockKind::detached) {
+      m.value = r.standoff;
+      m.value_to_position = 1.0;
+    } else if (attached && std::isfinite(m.half_width) && r.shock_angle_ci_deg > 0) {
+      m.value = r.shock_angle_deg;
+      m.value_to_position =
+          attached_reach(s, r) * scene::kDeg;  // the half-width's lever, per degree
+    }
+  }
+  m.quantity = attached                                ? "shock_angle"
+               : r.shock == scene::ShockKind::detached ? "standoff"
+                                                       : "none";
+  m.details = {{"shock", scene::to_string(r.shock)},
+               {"shock_angle_deg", json_number(r.shock_angle_deg)},
+               {"shock_angle_ci_deg", json_number(r.shock_angle_ci_deg)},
+               {"standoff", json_number(r.standoff)},
+               {"standoff_ci", json_number(r.standoff_ci)},
+               {"interval_method", r.interval_method}};
+  return m;
+}
+
+granular::PrecisionGoal band_goal(const scene::Scene& s, double angle_scatter_deg) {
+  if (!std::isfinite(angle_scatter_deg))
+    throw scene::InputError(
+        s.source_file +
+        ": granular.target_half_width: band needs a calibrated band (a wedge whose restitution "
+        "comes from the calibration table, which gives the angle scatter the band is made of)");
+  granular::PrecisionGoal goal;
+  goal.target = band_target_deg(angle_scatter_deg);
+  goal.unit = "deg";
+  goal.min_flow_throughs = kBandMinAveraging;
+  char source[160];
+  std::snprintf(source, sizeof source,
+                "band: the run's own interval widens the calibrated band (+-%.3g deg) by at most "
+                "%g%%",
+                shockfit::kNormal95 * angle_scatter_deg, 100.0 * kBandWidening);
+  goal.target_source = source;
+  goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
+    return measure_shock(s, fields, groups, true);
+  };
+  return goal;
+}
+
+}  // namespace
+
+double band_target_deg(double angle_scatter_deg) {
+  const double widened = 1.0 + kBandWidening;
+  return std::sqrt(widened * widened - 1.0) * shockfit::kNormal95 * angle_scatter_deg;
+}
+
+granular::PrecisionGoal precision_goal(const scene::Scene& s, double angle_scatter_deg) {
+  if (s.granular.target_from_band) return band_goal(s, angle_scatter_deg);
   granular::PrecisionGoal goal;
   const std::optional<double> target = precision_target(s);
   if (!target) return goal;
@@ -55,31 +128,18 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s) {
                 kTargetFineCells);
   goal.target_source = s.granular.target_from_mesh ? mesh_source : "granular.target_half_width";
   goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
-    granular::PrecisionMeasure m;
-    shockfit::ShockResult r = shockfit::locate_shock(s, fields);
-    shockfit::apply_group_interval(s, groups, r);
-    m.half_width = shock_position_half_width(s, r);
-    if (r.shock == scene::ShockKind::detached) {
-      m.value = r.standoff;
-      m.value_to_position = 1.0;
-    } else if (r.shock == scene::ShockKind::attached && std::isfinite(m.half_width) &&
-               r.shock_angle_ci_deg > 0) {
-      m.value = r.shock_angle_deg;
-      m.value_to_position =
-          attached_reach(s, r) * scene::kDeg;  // the half-width's lever, per degree
-    }
-    m.quantity = r.shock == scene::ShockKind::attached   ? "shock_angle"
-                 : r.shock == scene::ShockKind::detached ? "standoff"
-                                                         : "none";
-    m.details = {{"shock", scene::to_string(r.shock)},
-                 {"shock_angle_deg", json_number(r.shock_angle_deg)},
-                 {"shock_angle_ci_deg", json_number(r.shock_angle_ci_deg)},
-                 {"standoff", json_number(r.standoff)},
-                 {"standoff_ci", json_number(r.standoff_ci)},
-                 {"interval_method", r.interval_method}};
-    return m;
+    return measure_shock(s, fields, groups, false);
   };
   return goal;
+}
+
+bool default_to_band_target(scene::Scene& s, double angle_scatter_deg) {
+  scene::GranularParams& g = s.granular;
+  if (!s.body || g.averaging_given || g.target_from_band || precision_target(s) ||
+      !std::isfinite(angle_scatter_deg) || !scene::attached_shock_beta(s))
+    return false;
+  g.target_from_band = true;
+  return true;
 }
 
 }  // namespace pipeline

@@ -38,7 +38,12 @@ nlohmann::json averaging_report(const nlohmann::json& r) {
           {"cpu_seconds", from(g, "cpu_seconds")},
           {"cpu_budget", from(g, "cpu_budget")},
           {"target_half_width", from(precision, "target_half_width")},
-          {"half_width", from(r, "shock_position_half_width")},
+          {"target_unit", from(precision, "target_unit")},
+          {"target_source", from(precision, "target_source")},
+          // The last check's, in the target's unit; without a target the
+          // shock position's (body lengths).
+          {"half_width", precision.is_object() ? from(precision, "half_width")
+                                               : from(r, "shock_position_half_width")},
           {"interval_method", from(r, "interval_method")},
           {"interval_groups", from(r, "interval_groups")}};
 }
@@ -46,7 +51,8 @@ nlohmann::json averaging_report(const nlohmann::json& r) {
 }  // namespace
 
 Prediction GranularPredictor::predict(const PredictContext& cx) const {
-  const nlohmann::json r = run_prediction(cx.scene, cx.out_dir, cx.np, cx.force);
+  const nlohmann::json r =
+      run_prediction(cx.scene, cx.out_dir, cx.np, cx.force, cx.calibration_angle_scatter_deg);
   Prediction p;
   p.predictor = name();
   p.kind = scene::shock_kind_from(r.value("shock", "none"));

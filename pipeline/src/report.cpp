@@ -463,6 +463,19 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
                                         format_number(scatter, 3) + " deg)"
                                   : " (the angle's own 95% interval; the scene sets its restitution, so no calibration scatter)")
        << ".";
+  const nlohmann::json averaging = details.value("averaging", nlohmann::json::object());
+  if (in.prediction.predictor == "granular" && averaging.is_object() &&
+      std::isfinite(number_or_nan(averaging, "flow_throughs"))) {
+    auto text = [&](const char* key) {
+      const auto it = averaging.find(key);
+      return it != averaging.end() && it->is_string() ? it->get<std::string>() : std::string();
+    };
+    md << " The granular stage averaged "
+       << format_number(number_or_nan(averaging, "flow_throughs"), 3)
+       << " flow-through times (stopped by " << text("stopped_by")
+       << (text("target_source").empty() ? std::string() : "; target " + text("target_source"))
+       << ").";
+  }
   const double bow = number_or_nan(details, "calibration_bow_shock_relative_rms");
   if (in.prediction.kind == scene::ShockKind::detached && in.prediction.predictor == "granular")
     md << (std::isfinite(bow) ? " Its band at each station: the station's 95% interval combined with 1.96 times the "

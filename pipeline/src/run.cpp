@@ -252,11 +252,12 @@ nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t 
   return r;
 }
 
-nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np,
-                              bool force) {
+nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np, bool force,
+                              double angle_scatter_deg) {
   StageCache cache(out_dir);
-  // A target taken from the mesh moves with the mesh and the levels.
-  const granular::PrecisionGoal goal = precision_goal(s);
+  // A target taken from the mesh moves with the mesh and the levels, one
+  // from the band with the table.
+  const granular::PrecisionGoal goal = precision_goal(s, angle_scatter_deg);
   std::vector<std::string> parts{
       scene::section_yaml(s, "body"), scene::section_yaml(s, "freestream"),
       scene::section_yaml(s, "domain"), scene::section_yaml(s, "granular")};
@@ -334,6 +335,7 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   scene::make_dirs(o.out_dir);
   const scene::DirLock lock(o.out_dir);
   const AppliedCalibration calib = apply_calibration(s, o.calibration_path);
+  if (o.predictor == "granular") default_to_band_target(s, calib.angle_scatter_deg);
   const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
   const std::string& calib_note = calib.note;
   // Other predictors do not use the restitution: its note (and its warning

@@ -25,7 +25,7 @@ constexpr double kMaxGravity = 1e3;
 // Elastic impacts below this many thermal speeds: beyond the stream's own
 // speed at the Mach ceiling every impact would be elastic, the gas ideal.
 constexpr double kMaxImpactSpeed = 100.0;
-// `target_half_width`: a half-width in body lengths, or `mesh`.
+// `target_half_width`: a half-width in body lengths, `mesh` or `band`.
 void parse_precision_target(Section& s, GranularParams& p) {
   const std::optional<std::string> text = s.opt_string("target_half_width");
   if (!text) return;
@@ -33,12 +33,16 @@ void parse_precision_target(Section& s, GranularParams& p) {
     p.target_from_mesh = true;
     return;
   }
+  if (*text == "band") {
+    p.target_from_band = true;
+    return;
+  }
   char* end = nullptr;
   const double v = std::strtod(text->c_str(), &end);
   const Range r{0.0, kMaxTargetHalfWidth, true, false};
   if (text->empty() || end != text->c_str() + text->size() || !r.contains(v))
     s.fail("target_half_width", "expected a half-width in body lengths (" + r.describe() +
-                                    ") or 'mesh', got '" + *text + "'");
+                                    ") or 'mesh' or 'band', got '" + *text + "'");
   p.target_half_width = v;
 }
 
@@ -71,6 +75,7 @@ GranularParams parse_granular(Section& s) {
   p.lattice_nx = static_cast<int>(s.integer("lattice_nx", p.lattice_nx, 2, 100000));
   p.lattice_ny = static_cast<int>(s.integer("lattice_ny", p.lattice_ny, 2, 100000));
   p.warmup = s.opt_number("warmup", {0.0, kMaxFlowThroughs});
+  p.averaging_given = s.has("averaging");
   p.averaging = s.number("averaging", p.averaging, {0.0, kMaxFlowThroughs, true, false});
   parse_precision_target(s, p);
   p.cpu_budget = s.opt_number("cpu_budget", positive());
@@ -103,6 +108,8 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
   emit_kv(e, "averaging", p.averaging);
   if (p.target_from_mesh)
     emit_kv(e, "target_half_width", "mesh");
+  else if (p.target_from_band)
+    emit_kv(e, "target_half_width", "band");
   else
     emit_opt(e, "target_half_width", p.target_half_width);
   emit_opt(e, "cpu_budget", p.cpu_budget);

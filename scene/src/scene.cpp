@@ -182,7 +182,6 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
   }
   Section gran = top.child("granular");
   sc.granular = parse_granular(gran);
-  const bool averaging_given = gran.has("averaging");
   gran.finish();
   if (sc.box) resolve_box_particles(sc, gran);
   {
@@ -213,7 +212,7 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     (void)g;
     (void)scene_domain(sc);  // validates an override against the body
     if (!end_time_given && outflow_can_be_subsonic(sc)) sc.cfd.end_time = kSubsonicOutflowEndTime;
-    if (!averaging_given && attached_shock_beta(sc))
+    if (!sc.granular.averaging_given && attached_shock_beta(sc))
       sc.granular.averaging = kAttachedShockAveraging;
   }
   return sc;

@@ -73,6 +73,23 @@ TEST(FlowPrecision, StopsWhenTwoChecksInARowMeetTheTarget) {
   EXPECT_TRUE(j["cpu_budget"].is_null());
 }
 
+TEST(FlowPrecision, NoStopBeforeTheGoalsMinimum) {
+  // Every check meets the target, but the goal asks for at least 2.5
+  // flow-through times: checks start one interval earlier (2, 2.5), so the
+  // run stops at the minimum itself, not at the second check (1.5).
+  const scene::Scene s = scene::parse_scene(kSmallWedge);
+  auto calls = std::make_shared<int>(0);
+  granular::PrecisionGoal g = counting_goal(10.0, calls);
+  g.min_flow_throughs = 2.5;
+  g.unit = "deg";
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "precision");
+  EXPECT_EQ(*calls, 2);
+  EXPECT_NEAR(r.summary["averaging_flow_throughs"].get<double>(), 2.5, kFlowThroughTol);
+  EXPECT_EQ(r.summary["precision"]["min_flow_throughs"], 2.5);
+  EXPECT_EQ(r.summary["precision"]["target_unit"], "deg");
+}
+
 TEST(FlowPrecision, AChangeOfQuantityRestartsTheCount) {
   // Every check meets the target, but the quantity alternates (a shock
   // classified differently from one chunk to the next): never two in a row

@@ -6,8 +6,10 @@
 
 #include <cmath>
 
+#include "scene/errors.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
+#include "shockfit/group_interval.hpp"
 
 namespace {
 
@@ -54,4 +56,39 @@ TEST(PrecisionGoal, AttachedHalfWidthIsTheFarEndDisplacement) {
   EXPECT_DOUBLE_EQ(pipeline::shock_position_half_width(s, r), 0.03);
   r.shock = scene::ShockKind::none;
   EXPECT_TRUE(std::isnan(pipeline::shock_position_half_width(s, r)));
+}
+
+TEST(PrecisionGoal, ABandTargetIsTheAngleIntervalThatWidensTheBandByAFifth) {
+  // A scatter of 0.3 deg: the band's own part is 1.96 x 0.3; a run interval
+  // of sqrt(1.2^2 - 1) times it makes the band 1.2 times as wide.
+  constexpr double kScatterDeg = 0.3;
+  const scene::Scene s = wedge("{target_half_width: band}");
+  EXPECT_TRUE(scene::parse_scene(scene::to_yaml(s)).granular.target_from_band);
+  const granular::PrecisionGoal g = pipeline::precision_goal(s, kScatterDeg);
+  ASSERT_TRUE(g.active());
+  EXPECT_EQ(g.unit, "deg");
+  EXPECT_EQ(g.min_flow_throughs, pipeline::kBandMinAveraging);
+  const double own = shockfit::kNormal95 * kScatterDeg;
+  EXPECT_NEAR(std::hypot(g.target, own), (1.0 + pipeline::kBandWidening) * own, 1e-12);
+  // Without a calibrated band there is nothing to be small against.
+  EXPECT_THROW(pipeline::precision_goal(s), scene::InputError);
+}
+
+TEST(PrecisionGoal, ARunDefaultsToTheBandOnlyWhereTheSceneLeftTheAveragingOpen) {
+  constexpr double kScatterDeg = 0.3;
+  scene::Scene open = wedge("{}");
+  EXPECT_TRUE(pipeline::default_to_band_target(open, kScatterDeg));
+  EXPECT_TRUE(open.granular.target_from_band);
+  for (const char* set :
+       {"{averaging: 16}", "{target_half_width: 0.01}", "{target_half_width: mesh}"}) {
+    scene::Scene s = wedge(set);
+    EXPECT_FALSE(pipeline::default_to_band_target(s, kScatterDeg)) << set;
+    EXPECT_FALSE(s.granular.target_from_band) << set;
+  }
+  scene::Scene uncalibrated = wedge("{}");
+  EXPECT_FALSE(pipeline::default_to_band_target(uncalibrated, scene::kNaN));
+  // A wedge beyond its maximum deflection has a bow shock: no angle band.
+  scene::Scene detached = scene::parse_scene(
+      "name: d\nbody: {kind: wedge, angle_deg: 36, length: 1.0}\nfreestream: {mach: 3}\n");
+  EXPECT_FALSE(pipeline::default_to_band_target(detached, kScatterDeg));
 }

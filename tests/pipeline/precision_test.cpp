@@ -11,7 +11,9 @@
 #include <string>
 
 #include "granular/flow_run.hpp"
+#include "pipeline/precision_goal.hpp"
 #include "pipeline/run.hpp"
+#include "scene/errors.hpp"
 #include "scene/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -65,6 +67,29 @@ TEST(Precision, EasyTargetStopsByPrecision) {
   // The final shock fit is the last check's: same fields, same fit.
   EXPECT_DOUBLE_EQ(r["shock_position_half_width"].get<double>(), achieved);
   EXPECT_GT(g["cpu_seconds"].get<double>(), 0.0);
+}
+
+TEST(Precision, ABandTargetStopsNoEarlierThanItsMinimum) {
+  // A table scatter of 1 deg asks for an angle known to 1.3 deg, which
+  // every attached fit here beats from the first check: the run still
+  // averages the band's minimum, stopping at the second check (3.5, 4).
+  constexpr double kWideScatterDeg = 1.0;
+  scene::Scene s = scene::load_scene(kScene);
+  s.granular.target_from_band = true;
+  const nlohmann::json r = pipeline::run_prediction(s, fresh("band"), 2, true, kWideScatterDeg);
+  const nlohmann::json& g = r["granular"];
+  ASSERT_EQ(r.value("shock", ""), "attached") << r.dump(1);
+  EXPECT_EQ(g["stopped_by"], "precision");
+  EXPECT_NEAR(g["averaging_flow_throughs"].get<double>(), pipeline::kBandMinAveraging, 0.01);
+  const nlohmann::json& p = g["precision"];
+  EXPECT_EQ(p["target_unit"], "deg");
+  EXPECT_NEAR(p["target_half_width"].get<double>(), pipeline::band_target_deg(kWideScatterDeg),
+              1e-12);
+  ASSERT_EQ(p["checks"].size(), 2u);
+  // The checks measure the angle's own half-width, the one shockfit reports.
+  EXPECT_DOUBLE_EQ(p["half_width"].get<double>(), r["shock_angle_ci_deg"].get<double>());
+  // Without the table's scatter there is no band to be small against.
+  EXPECT_THROW(pipeline::run_prediction(s, fresh("band_none"), 2, true), scene::InputError);
 }
 
 TEST(Precision, ImpossibleTargetStopsByBudget) {

@@ -54,8 +54,15 @@ struct PrecisionMeasure {
 // Precision on demand: average until measure(fields so far).half_width <=
 // target. Without a measure the run averages granular.averaging.
 struct PrecisionGoal {
-  double target = std::numeric_limits<double>::quiet_NaN();  // body lengths
+  // In `unit`: body lengths, unless the measure says how precise the shock
+  // is in another quantity (an angle in degrees); the measure's half_width
+  // and value then use that unit and value_to_position is 1.
+  double target = std::numeric_limits<double>::quiet_NaN();
+  std::string unit = "body lengths";
   std::string target_source;  // how the target was set, for the summary
+  // No stop before this many flow-through times are averaged: checks start
+  // one check interval earlier, so that two can meet the target there.
+  double min_flow_throughs = 0.0;
   std::function<PrecisionMeasure(const scene::Lattice& fields,
                                  const std::vector<scene::Lattice>& groups)>
       measure;
@@ -73,7 +80,8 @@ struct PrecisionGoal {
 // The averaging stops at the first of (summary.stopped_by): "precision"
 // (goal active and met by two consecutive checks with the same quantity,
 // between which the shock moved by no more than the target;
-// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on),
+// checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on, none
+// stopping before the goal's min_flow_throughs),
 // "plateau" (the interval stopped shrinking with averaging time:
 // granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at
 // the last chunk's rate) and "averaging" (granular.max_averaging with a goal, else

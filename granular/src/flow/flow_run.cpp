@@ -345,7 +345,9 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
   // Chunks end at whole snapshots nearest to 1, 1.5, 2, ... flow-through
   // times (counted from the start, so rounding does not accumulate), the
   // last at the cap.
-  double boundary = chunked ? (goal.active() ? kFirstCheckFlowThroughs : kCheckEveryFlowThroughs)
+  const double first_check =
+      std::max(kFirstCheckFlowThroughs, goal.min_flow_throughs - kCheckEveryFlowThroughs);
+  double boundary = chunked ? (goal.active() ? first_check : kCheckEveryFlowThroughs)
                             : std::numeric_limits<double>::infinity();
   auto chunk_end = [&](long done) {
     return std::clamp(std::isfinite(boundary) ? snapshots_for(boundary) : cap, done + 1, cap);
@@ -378,11 +380,14 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
            {"cpu_seconds", cpu.seconds()},
            {"details", out.last.details}});
       out.history.push_back({averaged, out.last.half_width, out.last.quantity});
-      if (anyone(group, met(goal, previous, out.last))) {
+      // The nominal check time, not the snapshot-rounded one: a check meant
+      // for the minimum counts there.
+      const bool may_stop = boundary >= goal.min_flow_throughs;
+      if (anyone(group, may_stop && met(goal, previous, out.last))) {
         out.stopped_by = "precision";
         break;
       }
-      if (anyone(group, interval_plateaued(out.history))) {
+      if (anyone(group, may_stop && interval_plateaued(out.history))) {
         out.stopped_by = "plateau";
         break;
       }
@@ -412,7 +417,9 @@ nlohmann::json precision_summary(const PrecisionGoal& goal, const AveragingOutco
     return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
   };
   return {{"target_half_width", goal.target},
+          {"target_unit", goal.unit},
           {"target_source", goal.target_source},
+          {"min_flow_throughs", goal.min_flow_throughs},
           {"half_width", num(a.last.half_width)},
           {"quantity", a.last.quantity},
           {"checks", a.checks}};
@@ -430,7 +437,8 @@ FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const Repl
   const Layout l = layout_for(p, geometry);
   if (!o.out_dir.empty()) scene::make_dirs(o.out_dir);
   if (p.snapshots && !o.out_dir.empty()) scene::make_dirs(o.out_dir + "/snapshots");
-  if (!goal.active() && (p.target_half_width || p.target_from_mesh) && group.rank == 0)
+  if (!goal.active() && (p.target_half_width || p.target_from_mesh || p.target_from_band) &&
+      group.rank == 0)
     scene::log_line(
         "granular: granular.target_half_width is judged by the pipeline (it needs shockfit); "
         "this run averages granular.averaging");

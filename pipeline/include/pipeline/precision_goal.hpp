@@ -6,6 +6,7 @@
 
 #include "granular/flow_run.hpp"
 #include "scene/scene.hpp"
+#include "scene/units.hpp"
 #include "shockfit/locate.hpp"
 
 namespace pipeline {
@@ -30,8 +31,34 @@ std::optional<double> precision_target(const scene::Scene& s);
 // standoff half-width. NaN when no shock was found.
 double shock_position_half_width(const scene::Scene& s, const shockfit::ShockResult& r);
 
+// `target_half_width: band`. An attached shock's band is the predicted angle
+// +- hypot(the run's own 95% half-width, 1.96 x the calibration table's
+// out-of-sample angle scatter) (band_angle_half_width_deg). Once the run's
+// own half-width is below band_target_deg the band is at most kBandWidening
+// wider than a perfectly averaged run's would be, and averaging on buys the
+// grid almost nothing: the clustered grids' CFD speedup on wedge M3/10 did
+// not change between 4 and 16 flow-through times (docs/case_studies.md).
+inline constexpr double kBandWidening = 0.2;
+// No band stop before this many flow-through times: the shock angle still
+// settles before (wedge M3/10: 23.8, 25.3, 26.2, 26.4 deg at 1-2.5), and from
+// 4 to 16 the mean angle does not move (-0.02 deg, 95% -0.13 to +0.09, 16
+// unseen wedges; docs/shockfit.md).
+inline constexpr double kBandMinAveraging = 4.0;
+// sqrt((1 + kBandWidening)^2 - 1) x 1.96 x the scatter, deg.
+double band_target_deg(double angle_scatter_deg);
+
 // The goal handed to the granular stage: inactive (fixed averaging) when the
 // scene sets no target; else the target and a measure that runs shockfit.
-granular::PrecisionGoal precision_goal(const scene::Scene& s);
+// A band target needs the table's angle scatter (deg; InputError naming the
+// key when NaN).
+granular::PrecisionGoal precision_goal(const scene::Scene& s,
+                                       double angle_scatter_deg = scene::kNaN);
+
+// Where a scene leaves the averaging to the pipeline (no granular.averaging,
+// no target) and the band of an attached gas shock is calibrated, a run that
+// builds the band averages to `band`: sets target_from_band, true if it did.
+// `pipeline predict` keeps the scene's averaging (the prediction is the
+// product there, not a band).
+bool default_to_band_target(scene::Scene& s, double angle_scatter_deg);
 
 }  // namespace pipeline

@@ -51,9 +51,10 @@ std::string clustered_family(const std::string& predictor);
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o);
 
 // Granular + shockfit only (sweeps and calibration). Returns shockfit's summary
-// merged with granular's wall time.
+// merged with granular's wall time. angle_scatter_deg: the calibration
+// table's, for `target_half_width: band` (precision_goal).
 nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir, int np,
-                              bool force = false);
+                              bool force = false, double angle_scatter_deg = scene::kNaN);
 // The same at restitution e and seed (the calibrations' sweeps); RunError
 // when interrupted (finished runs stay cached, so a rerun resumes).
 nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t seed,

@@ -59,12 +59,16 @@ struct GranularParams {
   // Flow-through times averaged (no precision target). Unset: 4, or
   // kAttachedShockAveraging where the gas shock is attached (scene.cpp).
   double averaging = 4.0;
+  bool averaging_given = false;  // set in the file (else a pipeline run may stop at its band)
   // Precision on demand (docs/granular_flow.md): average until the shock's
   // 95% position half-width (body lengths) is at most the target, the CPU
   // budget is spent, or max_averaging flow-through times are averaged. The
   // pipeline judges the half-width (it runs shockfit); unset: `averaging`.
   std::optional<double> target_half_width;  // body lengths
   bool target_from_mesh = false;  // `target_half_width: mesh`: k h_min of the finest clustered grid
+  // `target_half_width: band`: an attached shock's angle interval small
+  // against the calibrated band it widens (pipeline/precision_goal.hpp).
+  bool target_from_band = false;
   std::optional<double> cpu_budget;    // CPU seconds of the granular stage
   double max_averaging = 16.0;         // flow-through times, with a target
   int replicas = 2;                    // independent seeds (seed, seed+1, ...)

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "json_fields.hpp"
+#include "pipeline/predictor.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
@@ -102,7 +103,7 @@ granular::PrecisionGoal band_goal(const scene::Scene& s, double angle_scatter_de
   std::snprintf(source, sizeof source,
                 "band: the run's own interval widens the calibrated band (+-%.3g deg) by at most "
                 "%g%%",
-                shockfit::kNormal95 * angle_scatter_deg, 100.0 * kBandWidening);
+                band_angle_half_width_deg(0.0, angle_scatter_deg), 100.0 * kBandWidening);
   goal.target_source = source;
   goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
     return measure_shock(s, fields, groups, true);
@@ -114,7 +115,8 @@ granular::PrecisionGoal band_goal(const scene::Scene& s, double angle_scatter_de
 
 double band_target_deg(double angle_scatter_deg) {
   const double widened = 1.0 + kBandWidening;
-  return std::sqrt(widened * widened - 1.0) * shockfit::kNormal95 * angle_scatter_deg;
+  // The band of a perfectly averaged run: the table's part alone.
+  return std::sqrt(widened * widened - 1.0) * band_angle_half_width_deg(0.0, angle_scatter_deg);
 }
 
 granular::PrecisionGoal precision_goal(const scene::Scene& s, double angle_scatter_deg) {

@@ -44,7 +44,8 @@ inline constexpr double kBandWidening = 0.2;
 // 4 to 16 the mean angle does not move (-0.02 deg, 95% -0.13 to +0.09, 16
 // unseen wedges; docs/shockfit.md).
 inline constexpr double kBandMinAveraging = 4.0;
-// sqrt((1 + kBandWidening)^2 - 1) x 1.96 x the scatter, deg.
+// sqrt((1 + kBandWidening)^2 - 1) x the band's own half-width from the
+// scatter alone (band_angle_half_width_deg with no run interval), deg.
 double band_target_deg(double angle_scatter_deg);
 
 // The goal handed to the granular stage: inactive (fixed averaging) when the

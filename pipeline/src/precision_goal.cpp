@@ -137,8 +137,8 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s, double angle_scatt
 
 bool default_to_band_target(scene::Scene& s, double angle_scatter_deg) {
   scene::GranularParams& g = s.granular;
-  if (!s.body || g.averaging_given || g.target_from_band || precision_target(s) ||
-      !std::isfinite(angle_scatter_deg) || !scene::attached_shock_beta(s))
+  if (!s.body || g.averaging_given || g.asks_precision() || !std::isfinite(angle_scatter_deg) ||
+      !scene::attached_shock_beta(s))
     return false;
   g.target_from_band = true;
   return true;

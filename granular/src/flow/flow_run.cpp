@@ -437,8 +437,7 @@ FlowResult run_flow_scene(const scene::Scene& s, const RunOptions& o, const Repl
   const Layout l = layout_for(p, geometry);
   if (!o.out_dir.empty()) scene::make_dirs(o.out_dir);
   if (p.snapshots && !o.out_dir.empty()) scene::make_dirs(o.out_dir + "/snapshots");
-  if (!goal.active() && (p.target_half_width || p.target_from_mesh || p.target_from_band) &&
-      group.rank == 0)
+  if (!goal.active() && p.asks_precision() && group.rank == 0)
     scene::log_line(
         "granular: granular.target_half_width is judged by the pipeline (it needs shockfit); "
         "this run averages granular.averaging");

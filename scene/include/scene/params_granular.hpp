@@ -69,6 +69,10 @@ struct GranularParams {
   // `target_half_width: band`: an attached shock's angle interval small
   // against the calibrated band it widens (pipeline/precision_goal.hpp).
   bool target_from_band = false;
+  // Whether the scene asks for precision on demand (any of the three forms).
+  [[nodiscard]] bool asks_precision() const {
+    return target_half_width || target_from_mesh || target_from_band;
+  }
   std::optional<double> cpu_budget;    // CPU seconds of the granular stage
   double max_averaging = 16.0;         // flow-through times, with a target
   int replicas = 2;                    // independent seeds (seed, seed+1, ...)

@@ -9,16 +9,21 @@
 # SEED defaults to the odd seeds 1..23 (a run of seed N uses N and N+1 for
 # its two replicas, so neighbouring seeds would share one). Run from the
 # repository root after the build; CPU seconds from /usr/bin/time.
+# REFIT=1 keeps a seed's recorded granular run (OUTDIR/sSEED/g) and refits it
+# with the current shockfit (runs.txt and summary.txt start afresh).
 set -euo pipefail
 template=$1; out=$2; shift 2
 seeds=("$@"); [ ${#seeds[@]} -gt 0 ] || seeds=(1 3 5 7 9 11 13 15 17 19 21 23)
 bin=${BIN:-build/bin}
 mkdir -p "$out"
+[ "${REFIT:-0}" = 1 ] && rm -f "$out/runs.txt"
 source "$(dirname "$0")/../json_value.sh"
 for s in "${seeds[@]}"; do
   d="$out/s$s"; mkdir -p "$d"
   sed "s/SEED/$s/" "$template" > "$d/scene.yaml"
-  CI=1 /usr/bin/time -f "%U" -o "$d/cpu.txt" "$bin/granular" run "$d/scene.yaml" --out "$d/g" > /dev/null 2> "$d/err.txt"
+  if [ "${REFIT:-0}" != 1 ] || [ ! -f "$d/g/fields.vti" ]; then
+    CI=1 /usr/bin/time -f "%U" -o "$d/cpu.txt" "$bin/granular" run "$d/scene.yaml" --out "$d/g" > /dev/null 2> "$d/err.txt"
+  fi
   "$bin/shockfit" "$d/scene.yaml" --fields "$d/g/fields.vti" --out "$d/s" > /dev/null 2>> "$d/err.txt"
   "$bin/shockfit" "$d/scene.yaml" --fields "$d/g/fields.vti" --groups none --out "$d/sb" > /dev/null 2>> "$d/err.txt"
   kind=$(value "$d/s/summary.json" shock | tr -d '"')

@@ -56,7 +56,8 @@ constexpr double kMeshCpuPerGrid = 0.7;
 // as particles^1.5: collisions per flow-through scale with the disks times
 // the flow-through time, which grows with the domain's length in diameters,
 // sqrt(particles) (wedge M3/10 at 4x the default particles: 41.6 against 4.7
-// CPU s, 4^1.57).
+// CPU s, 4^1.57), and with the replicas, each a whole run of its own (two
+// measured; the disc M3.5 at four: 10.2 against 5.1 CPU s).
 constexpr double kTypicalWarmupFlowThroughs = 1.75;
 constexpr double kGranularPredictorCpuPerFlowThrough = 8.0 / (kTypicalWarmupFlowThroughs + 4.0);
 // Where a band target typically stops: the median over 48 runs on 16 unseen
@@ -161,6 +162,7 @@ double granular_predictor_cpu(const scene::Scene& s) {
   const double flow_throughs = g.warmup.value_or(kTypicalWarmupFlowThroughs) + averaging;
   const double cpu =
       kGranularPredictorCpuPerFlowThrough * flow_throughs *
+      (static_cast<double>(g.replicas) / scene::kDefaultReplicas) *
       std::pow(f.expected_particles / scene::kDefaultFlowParticles, kGranularCpuParticleExponent);
   return s.granular.cpu_budget ? std::min(cpu, *s.granular.cpu_budget) : cpu;
 }
@@ -177,7 +179,10 @@ BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
 RunEstimate estimate_run(const scene::Scene& given, const std::string& predictor,
                          const BandScatter& scatter) {
   scene::Scene s = given;  // averaged as the run will (run_pipeline)
-  if (predictor == "granular") default_to_band_target(s, scatter.angle_deg);
+  if (predictor == "granular") {
+    default_to_band_target(s, scatter.angle_deg);
+    default_to_band_replicas(s, scatter.bow_relative);
+  }
   RunEstimate e;
   for (const double level : s.pipeline.levels)
     e.grids.push_back(grid(s, level_name("uniform", level), level, nullptr));

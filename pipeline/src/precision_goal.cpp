@@ -144,4 +144,13 @@ bool default_to_band_target(scene::Scene& s, double angle_scatter_deg) {
   return true;
 }
 
+bool default_to_band_replicas(scene::Scene& s, double bow_relative) {
+  scene::GranularParams& g = s.granular;
+  if (!s.body || g.replicas_given || !std::isfinite(bow_relative) ||
+      scene::attached_shock_beta(s) || g.replicas <= scene::kDefaultReplicas)
+    return false;
+  g.replicas = scene::kDefaultReplicas;
+  return true;
+}
+
 }  // namespace pipeline

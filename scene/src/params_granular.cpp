@@ -81,6 +81,7 @@ GranularParams parse_granular(Section& s) {
   p.cpu_budget = s.opt_number("cpu_budget", positive());
   p.max_averaging =
       s.number("max_averaging", p.max_averaging, {0.0, kMaxFlowThroughs, true, false});
+  p.replicas_given = s.has("replicas");
   p.replicas = static_cast<int>(s.integer("replicas", p.replicas, 1, 10000));
   p.snapshots = s.boolean("snapshots", p.snapshots);
   return p;

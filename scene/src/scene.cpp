@@ -212,8 +212,9 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     (void)g;
     (void)scene_domain(sc);  // validates an override against the body
     if (!end_time_given && outflow_can_be_subsonic(sc)) sc.cfd.end_time = kSubsonicOutflowEndTime;
-    if (!sc.granular.averaging_given && attached_shock_beta(sc))
-      sc.granular.averaging = kAttachedShockAveraging;
+    const bool attached = attached_shock_beta(sc).has_value();
+    if (!sc.granular.averaging_given && attached) sc.granular.averaging = kAttachedShockAveraging;
+    if (!sc.granular.replicas_given && !attached) sc.granular.replicas = kBowShockReplicas;
   }
   return sc;
 }

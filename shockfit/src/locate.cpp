@@ -178,6 +178,7 @@ nlohmann::json ShockResult::summary() const {
   j["standoff"] = num(standoff);
   j["standoff_ci"] = num(standoff_ci);
   j["standoff_stagnation"] = num(standoff_stagnation);
+  j["standoff_pooled"] = num(standoff_pooled);
   j["stations"] = static_cast<int>(stations.size());
   j["stations_accepted"] = accepted_count();
   j["shock_line"] = shock == ShockKind::attached

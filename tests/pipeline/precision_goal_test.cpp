@@ -92,3 +92,26 @@ TEST(PrecisionGoal, ARunDefaultsToTheBandOnlyWhereTheSceneLeftTheAveragingOpen) 
       "name: d\nbody: {kind: wedge, angle_deg: 36, length: 1.0}\nfreestream: {mach: 3}\n");
   EXPECT_FALSE(pipeline::default_to_band_target(detached, kScatterDeg));
 }
+
+TEST(PrecisionGoal, ARunKeepsTwoReplicasOnlyForABowShockWhoseBandIsTheTables) {
+  // A scene default of four replicas for bow shocks; a run whose band is
+  // the table's bow scatter (~+-30%) goes back to two, where the scene left
+  // them open.
+  constexpr double kBowRelative = 0.17;
+  const char* disc = "name: c\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n";
+  scene::Scene open = scene::parse_scene(disc);
+  ASSERT_EQ(open.granular.replicas, scene::kBowShockReplicas);
+  EXPECT_TRUE(pipeline::default_to_band_replicas(open, kBowRelative));
+  EXPECT_EQ(open.granular.replicas, scene::kDefaultReplicas);
+  scene::Scene given = scene::parse_scene(std::string(disc) + "granular: {replicas: 4}\n");
+  EXPECT_FALSE(pipeline::default_to_band_replicas(given, kBowRelative));
+  EXPECT_EQ(given.granular.replicas, 4);
+  // Without the table's scatter the band is the run's own interval.
+  scene::Scene own = scene::parse_scene(disc);
+  EXPECT_FALSE(pipeline::default_to_band_replicas(own, scene::kNaN));
+  EXPECT_EQ(own.granular.replicas, scene::kBowShockReplicas);
+  // An attached shock keeps what it has (its averaging follows its band).
+  scene::Scene attached = wedge("{}");
+  EXPECT_FALSE(pipeline::default_to_band_replicas(attached, kBowRelative));
+  EXPECT_EQ(attached.granular.replicas, scene::kDefaultReplicas);
+}

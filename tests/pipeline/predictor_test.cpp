@@ -173,7 +173,7 @@ TEST(Predictor, GranularHandsAnAttachedShockAsTheApexRay) {
 TEST(Predictor, GranularBowShockWithoutAcceptedStationsPlacesNoBandAndSaysWhy) {
   const auto s = scene::parse_scene(
       "name: d17\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.7}\ngranular: "
-      "{restitution: 1}\n");
+      "{restitution: 1, replicas: 2}\n");
   const auto dir = fresh("granular_no_band");
   const auto p = pipeline::predict_shock(s, "granular", dir.string(), 1);
   EXPECT_EQ(p.kind, scene::ShockKind::detached);

@@ -83,6 +83,21 @@ TEST(Parse, AveragingDefaultsToLongerOnlyOnAnAttachedShock) {
   EXPECT_DOUBLE_EQ(again.granular.averaging, scene::kAttachedShockAveraging);
 }
 
+// A bow shock (the gas shock detached) averages kBowShockReplicas replicas
+// unless the scene says otherwise; attached shocks keep kDefaultReplicas.
+TEST(Parse, ReplicasDefaultToMoreOnlyOnABowShock) {
+  EXPECT_EQ(parse_scene(kMinimal, "w.yaml").granular.replicas, scene::kDefaultReplicas);
+  const char* disc = "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n";
+  EXPECT_EQ(parse_scene(disc, "c.yaml").granular.replicas, scene::kBowShockReplicas);
+  EXPECT_EQ(parse_scene("body: {kind: wedge, angle_deg: 30}\nfreestream: {mach: 2}\n", "d.yaml")
+                .granular.replicas,
+            scene::kBowShockReplicas);
+  EXPECT_EQ(
+      parse_scene(std::string(disc) + "granular: {replicas: 1}\n", "c1.yaml").granular.replicas, 1);
+  const auto again = parse_scene(scene::to_yaml(parse_scene(disc, "c.yaml")), "echo.yaml");
+  EXPECT_EQ(again.granular.replicas, scene::kBowShockReplicas);
+}
+
 TEST(Parse, ResolvedYamlRoundTrips) {
   const auto s = parse_scene(kMinimal, "w.yaml");
   const auto again = parse_scene(scene::to_yaml(s), "echo.yaml");

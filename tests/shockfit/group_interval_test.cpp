@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <string>
 #include <vector>
 
 #include "scene/gasdynamics.hpp"
@@ -130,4 +132,59 @@ TEST(NearMedian, KeepsTheBulkAndDropsAWildValueAboutTheTrueMedian) {
   EXPECT_EQ(shockfit::near_median(odd, 3.5, 0.0).size(), 4u);
   EXPECT_EQ(shockfit::near_median(odd, 3.5, 1.0).size(), 5u);
   EXPECT_TRUE(shockfit::near_median({}, 3.5, 0.0).empty());
+}
+
+namespace {
+
+// Billig's bow shock ahead of the Mach 4 disc case study, moved `shift`
+// upstream (scene units), tanh of one cell, no noise.
+scene::Lattice bow_at(const scene::Scene& s, double shift) {
+  const double mach = s.freestream.mach, R = s.body->radius;
+  const double xv = -R - scene::billig_standoff_cylinder(mach) * R - shift;
+  const double r2 = scene::oblique_density_ratio(mach, std::numbers::pi / 2, 1.4);
+  const double h = 0.005;
+  scene::Lattice lat = shockfit_test::domain_lattice(s, h);
+  auto dist = [&](double x, double y) {  // signed, downstream positive
+    const double dy = 1e-6;
+    const double slope =
+        (scene::billig_shock_x(mach, R, y + dy) - scene::billig_shock_x(mach, R, y - dy)) /
+        (2 * dy);
+    return (x - xv - scene::billig_shock_x(mach, R, y)) / std::sqrt(1.0 + slope * slope);
+  };
+  shockfit_test::fill(
+      lat, "volume_fraction",
+      [&](double x, double y) {
+        return 0.1 * (1.0 + (r2 - 1.0) * 0.5 * (1.0 + std::tanh(dist(x, y) / h)));
+      },
+      0.0, 1);
+  return lat;
+}
+
+}  // namespace
+
+TEST(GroupInterval, ABowShocksStandoffIsTheGroupsMean) {
+  // Eight groups whose bow shock stands 2 or 4 cells farther off than the
+  // pooled fields' (mean 3 cells): the standoff reported is the groups'
+  // mean, the pooled fit's is kept beside it, the vertex moves with the
+  // standoff, and the interval is Student's t times the groups' standard
+  // error (offsets +-1 cell about their mean: sd 1.07 cells).
+  const scene::Scene s =
+      scene::load_scene(std::string(SOURCE_DIR) + "/pipeline/cases/disc_M4.yaml");
+  const double h = 0.005, L = s.body->radius;  // a disc's body length is its radius
+  shockfit::ShockResult r = shockfit::locate_shock(s, bow_at(s, 0.0));
+  ASSERT_EQ(r.shock, scene::ShockKind::detached);
+  const double pooled = r.standoff, vertex = r.vertex_x;
+  const double offsets[] = {2, 4, 2, 4, 2, 4, 2, 4};  // cells
+  std::vector<scene::Lattice> groups;
+  for (const double k : offsets) groups.push_back(bow_at(s, k * h));
+  shockfit::apply_group_interval(s, groups, r);
+  ASSERT_EQ(r.interval_method, "groups");
+  // The locator finds a noiseless tanh shock to a tenth of a cell.
+  constexpr double kCellTol = 0.1;
+  EXPECT_DOUBLE_EQ(r.standoff_pooled, pooled);
+  EXPECT_NEAR(r.standoff, pooled + 3 * h / L, kCellTol * h / L);
+  EXPECT_NEAR(r.vertex_x, vertex - 3 * h, kCellTol * h);
+  const double want = shockfit::student_t95(7) * std::sqrt(8.0 / 7.0 / 8.0) * h / L;
+  EXPECT_NEAR(r.standoff_ci, want, 0.1 * want);
+  EXPECT_DOUBLE_EQ(r.summary()["standoff_pooled"].get<double>(), pooled);
 }

@@ -62,4 +62,11 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s,
 // product there, not a band).
 bool default_to_band_target(scene::Scene& s, double angle_scatter_deg);
 
+// Where a scene leaves the replicas open and its gas shock is detached, a run
+// that builds the band with the table's bow-shock scatter (bow_relative, the
+// relative distance error, RMS; NaN: none) averages kDefaultReplicas instead
+// of kBowShockReplicas: that band is +-1.96 x bow_relative (about +-30%)
+// wide, and the run's own +-3.6% adds nothing to it. True if it did.
+bool default_to_band_replicas(scene::Scene& s, double bow_relative);
+
 }  // namespace pipeline

@@ -22,6 +22,16 @@ inline constexpr double kDefaultFlowParticles = 9200.0;
 // calibrations and bands were measured there.
 inline constexpr double kAttachedShockAveraging = 16.0;
 
+// Independent replicas (seeds) a run averages when the scene sets none.
+inline constexpr int kDefaultReplicas = 2;
+// A bow shock's standoff (the gas shock detached: discs, capsules, wedges
+// beyond the maximum deflection) gets twice as many: at two the groups' 95%
+// interval is +-3.0-3.6% of the standoff on discs, at four +-1.8-2.5%, and
+// it still covers (docs/shockfit.md, "The groups' mean standoff"); longer
+// averaging narrows the interval faster than the truth there (a bow shock
+// wanders slowly), more replicas do not.
+inline constexpr int kBowShockReplicas = 4;
+
 struct GranularParams {
   // Box scenes: exactly as ../shared/contract.md.
   std::optional<std::int64_t> particles;
@@ -75,7 +85,10 @@ struct GranularParams {
   }
   std::optional<double> cpu_budget;    // CPU seconds of the granular stage
   double max_averaging = 16.0;         // flow-through times, with a target
-  int replicas = 2;                    // independent seeds (seed, seed+1, ...)
+  // Independent seeds (seed, seed+1, ...). Unset: kDefaultReplicas, or
+  // kBowShockReplicas where the gas shock is detached (scene.cpp).
+  int replicas = kDefaultReplicas;
+  bool replicas_given = false;         // set in the file (else a pipeline run may use fewer)
   bool snapshots = false;              // write particle snapshots
 };
 

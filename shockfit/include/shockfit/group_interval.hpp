@@ -39,7 +39,8 @@ inline constexpr double kNormal95 = 1.96;
 // fields; attached, at least that of the groups' own fits); sets
 // r.interval_method ("groups", or "bootstrap" where too few groups find the
 // shock again), r.interval_groups, r.interval_group_values and (attached)
-// r.group_own_angles. The angle or standoff itself is the pooled fit's.
+// r.group_own_angles. The angle stays the pooled fit's; a standoff becomes
+// the groups' mean (the pooled one kept as r.standoff_pooled).
 void apply_group_interval(const scene::Scene& s, const std::vector<scene::Lattice>& groups,
                           ShockResult& r);
 

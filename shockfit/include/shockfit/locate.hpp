@@ -35,6 +35,9 @@ struct ShockResult {
   double shock_angle_lo_deg = kNaN, shock_angle_hi_deg = kNaN;  // 95% interval
   scene::Vec2 line_point{kNaN, kNaN}, line_dir{kNaN, kNaN};  // fitted attached shock
   double standoff_stagnation = kNaN;  // detached: from the stagnation-line station alone (body lengths)
+  // Detached with groups: the pooled fields' own standoff (body lengths);
+  // `standoff` is then the groups' mean (group_interval.hpp).
+  double standoff_pooled = kNaN;
   double vertex_x = kNaN;          // detached: shock vertex x from the near-axis parabola
   double curvature_radius = kNaN;  // detached: shock radius of curvature at the vertex (body lengths)
   StationFit stagnation;                // the fit along the stagnation line (from the nose, along -x)

@@ -175,6 +175,10 @@ TEST(CalibrationTraining, DetachedWedgesAreLeftOut) {
   ASSERT_TRUE(s.body.has_value());
   EXPECT_DOUBLE_EQ(s.freestream.mach, 1.5);
   EXPECT_FALSE(s.granular.restitution_given);  // granular settings at their defaults
+  // but the averaging, that of the shipped table's sweeps (not the attached
+  // shocks' default 16)
+  EXPECT_TRUE(s.granular.averaging_given);
+  EXPECT_DOUBLE_EQ(s.granular.averaging, 4.0);
 }
 
 TEST(RestitutionFit, ACurvatureInMachIsRecoveredAndChosenOnASevenMachGrid) {

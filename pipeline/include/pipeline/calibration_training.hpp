@@ -24,7 +24,8 @@ std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths
 
 // A wedge scene at (mach, angle_deg) with every other key at its default,
 // as the case-study scenes have them (wedge length 1, gamma 1.4, default
-// granular settings); named train_M<mach>_<angle>.
+// granular settings), except the averaging: 4 flow-through times, the
+// shipped table's (calibration_training.cpp); named train_M<mach>_<angle>.
 scene::Scene training_scene(const WedgePoint& p);
 
 bool same_wedge(const WedgePoint& a, const WedgePoint& b);

@@ -174,6 +174,10 @@ scene::Scene point_scene(const ParametricPoint& p) {
   y += "granular: {restitution: " + fmt(p.restitution) +
        ", seed: 1, mach: " + fmt(p.granular_mach) + ", inflow_packing_fraction: " + fmt(p.packing) +
        ", averaging: " + fmt(p.averaging);
+  // Every point at the replicas its recorded runs were made with (and cached
+  // under, the key not naming them): bow shocks would otherwise get
+  // kBowShockReplicas.
+  y += ", replicas: " + std::to_string(scene::kDefaultReplicas);
   // A wedge's size is set by its disk count; a disc's radius in diameters is
   // the study's variable (its body length is the radius).
   y += p.body == "wedge" ? ", particles: " + std::to_string(p.particles)

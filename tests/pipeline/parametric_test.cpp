@@ -50,6 +50,9 @@ TEST(Parametric, GridsKeepCaseStudiesOutOfTraining) {
     for (const auto& panel : pipeline::parametric_panels(grid))
       for (const auto& p : panel.points) {
         EXPECT_NO_THROW((void)pipeline::point_scene(p)) << pipeline::point_key(p);
+        // Its recorded replicas, a disc's too (the cache key names none).
+        EXPECT_EQ(pipeline::point_scene(p).granular.replicas, scene::kDefaultReplicas)
+            << pipeline::point_key(p);
         if (p.body == "wedge" && p.mach == 3 && p.theta_deg == 10) {
           EXPECT_TRUE(pipeline::is_case_study(p));
         }

@@ -179,10 +179,8 @@ BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
 RunEstimate estimate_run(const scene::Scene& given, const std::string& predictor,
                          const BandScatter& scatter) {
   scene::Scene s = given;  // averaged as the run will (run_pipeline)
-  if (predictor == "granular") {
-    default_to_band_target(s, scatter.angle_deg);
-    default_to_band_replicas(s, scatter.bow_relative);
-  }
+  if (predictor == "granular")
+    default_to_band_averaging(s, scatter.angle_deg, scatter.bow_relative);
   RunEstimate e;
   for (const double level : s.pipeline.levels)
     e.grids.push_back(grid(s, level_name("uniform", level), level, nullptr));

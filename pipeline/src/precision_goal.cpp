@@ -153,4 +153,9 @@ bool default_to_band_replicas(scene::Scene& s, double bow_relative) {
   return true;
 }
 
+void default_to_band_averaging(scene::Scene& s, double angle_scatter_deg, double bow_relative) {
+  default_to_band_target(s, angle_scatter_deg);
+  default_to_band_replicas(s, bow_relative);
+}
+
 }  // namespace pipeline

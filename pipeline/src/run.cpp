@@ -335,10 +335,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
   scene::make_dirs(o.out_dir);
   const scene::DirLock lock(o.out_dir);
   const AppliedCalibration calib = apply_calibration(s, o.calibration_path);
-  if (o.predictor == "granular") {
-    default_to_band_target(s, calib.angle_scatter_deg);
-    default_to_band_replicas(s, calib.bow_shock_relative_rms);
-  }
+  if (o.predictor == "granular")
+    default_to_band_averaging(s, calib.angle_scatter_deg, calib.bow_shock_relative_rms);
   const double calib_cpu = o.predictor == "granular" ? calib.cpu_seconds : kNaN;
   const std::string& calib_note = calib.note;
   // Other predictors do not use the restitution: its note (and its warning

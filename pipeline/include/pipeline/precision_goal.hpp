@@ -69,4 +69,8 @@ bool default_to_band_target(scene::Scene& s, double angle_scatter_deg);
 // wide, and the run's own +-3.6% adds nothing to it. True if it did.
 bool default_to_band_replicas(scene::Scene& s, double bow_relative);
 
+// Both of the above: what a run that builds the band averages, in one place
+// for the run and its cost estimate.
+void default_to_band_averaging(scene::Scene& s, double angle_scatter_deg, double bow_relative);
+
 }  // namespace pipeline

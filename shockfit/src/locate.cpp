@@ -172,6 +172,7 @@ nlohmann::json ShockResult::summary() const {
   j["field"] = field;
   j["shock_angle_deg"] = num(shock_angle_deg);
   j["shock_angle_ci_deg"] = num(shock_angle_ci_deg);
+  j["shock_angle_pooled_deg"] = num(shock_angle_pooled_deg);
   j["shock_angle_ci95_deg"] = std::isfinite(shock_angle_lo_deg)
                                   ? nlohmann::json::array({shock_angle_lo_deg, shock_angle_hi_deg})
                                   : nlohmann::json(nullptr);

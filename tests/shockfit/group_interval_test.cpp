@@ -94,24 +94,42 @@ TEST(GroupInterval, TooFewGroupsFindingTheShockKeepTheBootstrap) {
   EXPECT_DOUBLE_EQ(r.shock_angle_ci_deg, bootstrap);
 }
 
-TEST(GroupInterval, AttachedGroupsAlsoFindTheirShockOnTheirOwn) {
-  // Every group's shock 0.3 deg steeper than the pooled fields': each
-  // group's own fit finds it there and is listed; the angle stays the pooled
-  // fit's, and eight equal groups leave a near-zero interval.
+TEST(GroupInterval, AnAttachedAngleIsTheGroupsOwnFitsMean) {
+  // Seven groups' shocks 0.3 deg steeper than the pooled fields' and one 6
+  // deg steeper (another feature found): each group's own fit finds its
+  // shock and is listed; the wild one is left out of the mean, so the angle
+  // is the pooled one + 0.3, the pooled kept beside it and the reported line
+  // turned with it. The interval stays the groups' refitted on the pooled
+  // stations, wild one included: 2.365 x sd {0.3 x 7, 6.0} / sqrt(8).
   const scene::Scene s = wedge_scene();
   const double beta = *scene::oblique_shock_beta(3.0, 10.0 * kDeg, 1.4);
   shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
   const double pooled = r.shock_angle_deg;
-  std::vector<scene::Lattice> groups(8, shock_at(s, beta + 0.3 * kDeg));
+  std::vector<scene::Lattice> groups(7, shock_at(s, beta + 0.3 * kDeg));
+  groups.push_back(shock_at(s, beta + 6.0 * kDeg));
   shockfit::apply_group_interval(s, groups, r);
   ASSERT_EQ(r.interval_method, "groups");
-  EXPECT_DOUBLE_EQ(r.shock_angle_deg, pooled);
   ASSERT_EQ(r.group_own_angles.size(), 8u);
   // The locator resolves each angle to a few hundredths of a degree here.
   constexpr double kAngleTolDeg = 0.05;
-  for (const double a : r.group_own_angles) EXPECT_NEAR(a, pooled + 0.3, kAngleTolDeg);
-  EXPECT_LT(r.shock_angle_ci_deg, kAngleTolDeg);
-  EXPECT_EQ(r.summary()["group_own_angles_deg"].size(), 8u);
+  for (std::size_t k = 0; k < 7; ++k)
+    EXPECT_NEAR(r.group_own_angles[k], pooled + 0.3, kAngleTolDeg);
+  EXPECT_NEAR(r.group_own_angles[7], pooled + 6.0, 4 * kAngleTolDeg);
+  EXPECT_DOUBLE_EQ(r.shock_angle_pooled_deg, pooled);
+  EXPECT_NEAR(r.shock_angle_deg, pooled + 0.3, kAngleTolDeg);
+  EXPECT_NEAR(std::atan2(r.line_dir.y, r.line_dir.x) / kDeg, r.shock_angle_deg, 1e-9);
+  const double offsets[] = {0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 6.0};
+  double mean = 0.0, ss = 0.0;
+  for (const double d : offsets) mean += d / 8.0;
+  for (const double d : offsets) ss += (d - mean) * (d - mean);
+  const double want = shockfit::student_t95(7) * std::sqrt(ss / 7.0 / 8.0);
+  constexpr double kRelTol = 0.1;
+  EXPECT_NEAR(r.shock_angle_ci_deg, want, kRelTol * want);
+  EXPECT_NEAR(0.5 * (r.shock_angle_hi_deg + r.shock_angle_lo_deg), r.shock_angle_deg, 1e-9);
+  const nlohmann::json j = r.summary();
+  EXPECT_EQ(j["group_own_angles_deg"].size(), 8u);
+  EXPECT_DOUBLE_EQ(j["shock_angle_pooled_deg"].get<double>(), pooled);
+  EXPECT_DOUBLE_EQ(j["shock_angle_deg"].get<double>(), r.shock_angle_deg);
 }
 
 // The outlier rule the groups and the bow shock's stations share: distances

@@ -11,10 +11,11 @@
 // repeatable curvature as noise and stays as wide.
 // Attached shocks also find each group's shock from scratch (its own
 // stations and tests); the same t times the standard error of those angles
-// is the least half-width. The pooled fit's station choices near the apex
-// are made once per run and every group refitted on its stations shares
-// them: on unseen wedges at calibrated e the pooled angle spread 0.30 deg
-// from run to run against intervals of 0.11-0.15.
+// is the least half-width, and their mean the angle. The pooled fit's
+// station choices near the apex are made once per run and every group
+// refitted on its stations shares them: on unseen wedges at calibrated e the
+// pooled angle spread 0.30 deg from run to run against intervals of
+// 0.11-0.15.
 #include <vector>
 
 #include "scene/lattice.hpp"
@@ -39,8 +40,9 @@ inline constexpr double kNormal95 = 1.96;
 // fields; attached, at least that of the groups' own fits); sets
 // r.interval_method ("groups", or "bootstrap" where too few groups find the
 // shock again), r.interval_groups, r.interval_group_values and (attached)
-// r.group_own_angles. The angle stays the pooled fit's; a standoff becomes
-// the groups' mean (the pooled one kept as r.standoff_pooled).
+// r.group_own_angles. An attached angle becomes the groups' own fits' mean
+// (outliers left out; the pooled one kept as r.shock_angle_pooled_deg), a
+// standoff the groups' mean (the pooled one kept as r.standoff_pooled).
 void apply_group_interval(const scene::Scene& s, const std::vector<scene::Lattice>& groups,
                           ShockResult& r);
 

@@ -38,6 +38,9 @@ struct ShockResult {
   // Detached with groups: the pooled fields' own standoff (body lengths);
   // `standoff` is then the groups' mean (group_interval.hpp).
   double standoff_pooled = kNaN;
+  // Attached with groups: the pooled fields' own line angle (deg);
+  // `shock_angle_deg` is then the groups' own fits' mean (group_interval.hpp).
+  double shock_angle_pooled_deg = kNaN;
   double vertex_x = kNaN;          // detached: shock vertex x from the near-axis parabola
   double curvature_radius = kNaN;  // detached: shock radius of curvature at the vertex (body lengths)
   StationFit stagnation;                // the fit along the stagnation line (from the nose, along -x)

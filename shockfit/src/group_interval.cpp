@@ -29,6 +29,14 @@ namespace {
 // 31 deg among groups near 19).
 constexpr double kGroupOutlierSigmas = 3.5;
 
+// The groups' own fits give the angle only where at least this fraction of
+// the groups find an attached shock on their own. Where more fail, the
+// fields are too noisy for a group to choose its stations and those that do
+// are suspect (a 4000-disk wedge, 3 flow-through times: five of eight
+// groups, two at 35 and 48 deg among 22-27, too many for the outlier test);
+// on every unseen-wedge run at 16 flow-through times all eight did.
+constexpr double kMinOwnFitFraction = 0.75;
+
 // A group's attached shock found from scratch on its fields alone, with the
 // pooled fit's field definition: its own stations, acceptance and outlier
 // tests. NaN where it finds no attached shock.
@@ -68,10 +76,9 @@ std::vector<double> finite_of(const std::vector<double>& values) {
   return out;
 }
 
-// The attached shock's angle becomes `angle_deg`, the pooled fit's kept;
-// the reported line turns about its point with it.
+// The attached shock's angle becomes `angle_deg`; the reported line turns
+// about its point with it.
 void take_angle(ShockResult& r, double angle_deg) {
-  r.shock_angle_pooled_deg = r.shock_angle_deg;
   r.shock_angle_deg = angle_deg;
   const double a = angle_deg * scene::kDeg;
   if (std::isfinite(r.line_dir.x)) r.line_dir = {std::cos(a), std::sin(a)};
@@ -128,8 +135,12 @@ void apply_group_interval(const scene::Scene& s, const std::vector<scene::Lattic
   // wedge against the pooled fit's 0.177 (docs/shockfit.md, "The groups'
   // own fits' mean angle").
   for (const scene::Lattice& lat : groups) r.group_own_angles.push_back(own_group_angle(s, lat, r));
-  const GroupSpread own = spread_of(without_outliers(finite_of(r.group_own_angles)));
-  if (own.used > 0) take_angle(r, own.mean);
+  const std::vector<double> found = finite_of(r.group_own_angles);
+  const GroupSpread own = spread_of(without_outliers(found));
+  r.shock_angle_pooled_deg = r.shock_angle_deg;
+  if (own.used > 0 &&
+      static_cast<double>(found.size()) >= kMinOwnFitFraction * static_cast<double>(groups.size()))
+    take_angle(r, own.mean);
   set_angle_interval(r, own.used > 0 ? std::max(sp.half, own.half) : sp.half);
 }
 

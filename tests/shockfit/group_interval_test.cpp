@@ -132,6 +132,27 @@ TEST(GroupInterval, AnAttachedAngleIsTheGroupsOwnFitsMean) {
   EXPECT_DOUBLE_EQ(j["shock_angle_deg"].get<double>(), r.shock_angle_deg);
 }
 
+TEST(GroupInterval, TooFewOwnFitsKeepThePooledAngle) {
+  // Five groups with the shock 0.3 deg steeper and three blank ones: five
+  // own fits of eight, fewer than three quarters, so the angle stays the
+  // pooled fit's (also kept as shock_angle_pooled_deg) while the interval
+  // still comes from the five groups.
+  const scene::Scene s = wedge_scene();
+  const double beta = *scene::oblique_shock_beta(3.0, 10.0 * kDeg, 1.4);
+  shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
+  const double pooled = r.shock_angle_deg;
+  std::vector<scene::Lattice> groups(5, shock_at(s, beta + 0.3 * kDeg));
+  scene::Lattice blank = shockfit_test::domain_lattice(s, 0.005);
+  blank.add("volume_fraction", std::nan(""));
+  blank.add("v", std::nan(""));
+  groups.insert(groups.end(), 3, blank);
+  shockfit::apply_group_interval(s, groups, r);
+  ASSERT_EQ(r.interval_method, "groups");
+  EXPECT_EQ(r.interval_groups, 5);
+  EXPECT_DOUBLE_EQ(r.shock_angle_deg, pooled);
+  EXPECT_DOUBLE_EQ(r.shock_angle_pooled_deg, pooled);
+}
+
 // The outlier rule the groups and the bow shock's stations share: distances
 // from the median (the mean of the middle two for an even count) in robust
 // sigmas (1.4826 x the median absolute distance), never tighter than the floor.

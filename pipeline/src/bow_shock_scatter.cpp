@@ -33,15 +33,6 @@ bool same_point(scene::Vec2 a, scene::Vec2 b) {
   return std::abs(a.x - b.x) <= kSameStation && std::abs(a.y - b.y) <= kSameStation;
 }
 
-bool is_case_study(const scene::Scene& s) {
-  for (const auto& path : case_study_scenes()) {
-    const scene::Scene c = scene::load_scene(path);
-    if (scene::section_yaml(c, "body") == scene::section_yaml(s, "body") &&
-        c.freestream.mach == s.freestream.mach)
-      return true;
-  }
-  return false;
-}
 // The scatter belongs to the table's e(M): a run made with another
 // restitution (its own, or an older table's) measures something else.
 // (The wedge e(M), not a shape's own fit: the pooled scatter is what a body

@@ -220,6 +220,19 @@ CalibrationTable read_calibration(const std::string& path) {
       }
       t.bow_shock = w;
     }
+    if (const auto a = root["angle_scatter"]) {
+      if (!a.IsMap() || !a["deg"])
+        bad(path, a, "angle_scatter", "expected a map {deg, rms_deg, flow_throughs, runs, wedges}");
+      AngleScatter w;
+      w.deg = a["deg"].as<double>();
+      if (!(std::isfinite(w.deg) && w.deg >= 0))
+        bad(path, a["deg"], "angle_scatter.deg", "expected a finite number >= 0");
+      w.rms_deg = optional_number(a, "rms_deg", kNaN);
+      w.flow_throughs = optional_number(a, "flow_throughs", kNaN);
+      w.runs = a["runs"] ? a["runs"].as<int>() : 0;
+      w.wedges = a["wedges"] ? a["wedges"].as<int>() : 0;
+      t.angle_scatter = w;
+    }
     if (const auto tp = root["training_points"]) {
       if (!tp.IsSequence() || tp.size() != t.entries.size())
         bad(path, tp, "training_points", "expected one [mach, angle_deg] per entry");
@@ -280,6 +293,17 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
     e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
   }
+  if (const auto& a = t.angle_scatter) {
+    e.SetDoublePrecision(kCoefficientDigits);
+    e << YAML::Key << "angle_scatter" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
+      << "deg" << YAML::Value << a->deg;
+    if (std::isfinite(a->rms_deg)) e << YAML::Key << "rms_deg" << YAML::Value << a->rms_deg;
+    if (std::isfinite(a->flow_throughs))
+      e << YAML::Key << "flow_throughs" << YAML::Value << a->flow_throughs;
+    e << YAML::Key << "runs" << YAML::Value << a->runs << YAML::Key << "wedges" << YAML::Value
+      << a->wedges << YAML::EndMap;
+    e.SetDoublePrecision(kEntryDigits);
+  }
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;
   for (const auto& c : t.entries) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "mach" << YAML::Value << c.mach << YAML::Key
@@ -305,6 +329,9 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# it widens bow-shock bands. bow_shock.shapes (if present): a blunt shape's own\n"
             "# e = c0 + c1/M^2 and its left-out relative error (`--fit-shapes`); bodies of\n"
             "# that shape use it.\n"
+            "# angle_scatter (if present): the table's own angle error on unseen wedges at\n"
+            "# the default averaging, from `pipeline calibrate --angle-check-runs`; it widens\n"
+            "# attached bands in place of the leave-one-out estimate.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");
@@ -331,6 +358,7 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
 }
 
 double table_angle_scatter_deg(const CalibrationTable& t) {
+  if (t.angle_scatter) return t.angle_scatter->deg;
   const double rms = out_of_sample_angle_rms_deg(t);
   if (!std::isfinite(rms)) return kNaN;
   double noise = 0;

@@ -1,10 +1,10 @@
 // pipeline: one command from a body scene to the clustered-vs-uniform verdict.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include "pipeline/angle_scatter.hpp"
 #include "pipeline/bow_shape_fit.hpp"
 #include "pipeline/bow_shock_scatter.hpp"
 #include "pipeline/cost_estimate.hpp"
@@ -111,6 +111,12 @@ int main(int argc, char** argv) {
                       "finished `pipeline run` directories of blunt training bodies (no case study): "
                       "measure the granular bow shock's out-of-sample scatter under the table's e(M) "
                       "and write it into the table; runs nothing, --out not needed");
+    std::vector<std::string> angle_runs;
+    calib->add_option("--angle-check-runs", angle_runs,
+                      "bench/calibration_oos/angle_check.sh directories (unseen wedges predicted "
+                      "with the table at the default averaging): measure the table's own angle "
+                      "error and write it as the table's angle_scatter, which attached bands then "
+                      "take; runs nothing, --out not needed");
     bool fit_shapes = false;
     calib->add_flag(
         "--fit-shapes", fit_shapes,
@@ -225,6 +231,10 @@ int main(int argc, char** argv) {
                                                     fit_shapes ? &shape_options : nullptr)
                          .dump(2)
                   << "\n";
+        return 0;
+      }
+      if (!angle_runs.empty()) {
+        std::cout << pipeline::calibrate_angle_scatter(angle_runs, co.table_path).dump(2) << "\n";
         return 0;
       }
       if (!from_points.empty()) {

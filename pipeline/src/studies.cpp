@@ -23,6 +23,16 @@ std::vector<std::string> case_study_scenes() {
   return out;
 }
 
+bool is_case_study(const scene::Scene& s) {
+  for (const auto& path : case_study_scenes()) {
+    const scene::Scene c = scene::load_scene(path);
+    if (scene::section_yaml(c, "body") == scene::section_yaml(s, "body") &&
+        c.freestream.mach == s.freestream.mach)
+      return true;
+  }
+  return false;
+}
+
 namespace {
 std::string fmt(const nlohmann::json& j, const char* k, int prec = 4) { return format_number(number_or_nan(j, k), prec); }
 

@@ -357,6 +357,9 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
   EXPECT_EQ(*pipeline::interpolate_restitution(after, 4.0, NAN),
             *pipeline::interpolate_restitution(before, 4.0, NAN));
   EXPECT_NEAR(*pipeline::interpolate_restitution(after, 4.0, 12.0), 0.95 + 0.2 / 16.0, 1e-9);
+  // The measured angle scatter belonged to the replaced fit: dropped.
+  EXPECT_TRUE(before.angle_scatter.has_value());
+  EXPECT_FALSE(after.angle_scatter.has_value());
 
   scene::write_file_atomic((dir / "bad.json").string(), "{\"crossings\": 3}");
   EXPECT_THROW(pipeline::calibrate_from_points((dir / "bad.json").string(), ""), scene::InputError);

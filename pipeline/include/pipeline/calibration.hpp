@@ -99,6 +99,19 @@ struct BowShockScatter {
   std::optional<RestitutionFit> restitution_law;
 };
 
+// An attached shock's table error measured where the band uses it: over
+// unseen wedges (no training point, no case study) predicted with this
+// table at the default averaging, sqrt(mean error^2 - mean (half-width /
+// 1.96)^2), error = granular - gas angle (docs/calibration.md, "The band's
+// table error"). Written by `pipeline calibrate --angle-check-runs`;
+// measured under the fit it belongs to, so a new fit drops it.
+struct AngleScatter {
+  double deg = scene::kNaN;
+  double rms_deg = scene::kNaN;        // the runs' RMS error, their own noise included
+  double flow_throughs = scene::kNaN;  // the runs' averaging
+  int runs = 0, wedges = 0;
+};
+
 struct CalibrationTable {
   double gamma = 1.4;
   std::vector<CalibrationEntry> entries;  // the training points
@@ -111,6 +124,7 @@ struct CalibrationTable {
   // checks); NaN when not recorded. Reports amortise it over the scenes it serves.
   double cpu_seconds = scene::kNaN;
   std::optional<BowShockScatter> bow_shock;
+  std::optional<AngleScatter> angle_scatter;
 };
 
 CalibrationTable read_calibration(
@@ -123,11 +137,14 @@ void write_calibration(const CalibrationTable& t, const std::string& path);
 // angle, the run's own noise included. NaN for an old table (its reruns are
 // in sample) or fewer than two such entries.
 double out_of_sample_angle_rms_deg(const CalibrationTable& t);
-// The table's own error in the angle: that RMS with the left-out runs' own
-// noise (each run's 95% interval / 1.96) taken out in quadrature, floored at
-// zero. A new run's interval already holds its own noise; counting the
-// left-out runs' noise again in the band would count it twice. This is the
-// scatter an attached shock's band adds. NaN where the RMS is.
+// The table's own error in the angle, the scatter an attached shock's band
+// adds: the measured `angle_scatter` where the table has one, else that RMS
+// with the left-out runs' own noise (each run's 95% interval / 1.96) taken
+// out in quadrature, floored at zero. A new run's interval already holds its
+// own noise; counting the left-out runs' noise again in the band would count
+// it twice. (The left-out runs average 4 flow-through times, and their
+// intervals over-state their noise: 0.10 deg from them against 0.16-0.18
+// measured on unseen wedges at 16.) NaN where neither is.
 double table_angle_scatter_deg(const CalibrationTable& t);
 
 // The Mach-only fit that bodies without a wedge angle take: the bow block's

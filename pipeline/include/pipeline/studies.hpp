@@ -72,5 +72,8 @@ struct StudiesOptions {
 nlohmann::json run_studies(const StudiesOptions& o);
 
 std::vector<std::string> case_study_scenes();
+// Whether s has a case study's body at its Mach number: what no fit may train
+// or measure its scatter on.
+bool is_case_study(const scene::Scene& s);
 
 }  // namespace pipeline

@@ -1,0 +1,159 @@
+#include "pipeline/angle_scatter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "json_fields.hpp"
+#include "pipeline/rejudge.hpp"
+#include "pipeline/run.hpp"
+#include "pipeline/studies.hpp"
+#include "scene/errors.hpp"
+#include "scene/gasdynamics.hpp"
+#include "scene/io.hpp"
+#include "scene/scene.hpp"
+#include "scene/units.hpp"
+#include "shockfit/group_interval.hpp"
+
+namespace pipeline {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A wedge this close to a training point (Mach, deg) is that point.
+constexpr double kSamePoint = 1e-9;
+// A run's e is the table's as applied (rounded to kRestitutionQuantum).
+constexpr double kSameRestitution = 0.5 * kRestitutionQuantum + 1e-12;
+// Runs of one measure share their averaging (flow-through times): the
+// scatter belongs to the averaging the band is used at.
+constexpr double kSameAveraging = 0.5;
+
+bool is_training_point(const CalibrationTable& t, double mach, double angle_deg) {
+  return std::any_of(t.entries.begin(), t.entries.end(), [&](const CalibrationEntry& c) {
+    return std::abs(c.mach - mach) <= kSamePoint && std::abs(c.angle_deg - angle_deg) <= kSamePoint;
+  });
+}
+
+// The wedge the scene describes, refused where it cannot judge the table.
+void check_unseen_wedge(const std::string& path, const scene::Scene& s, const CalibrationTable& t) {
+  if (!s.body || s.body->kind != scene::BodyKind::wedge)
+    throw scene::InputError(path + ": key 'body.kind': expected a wedge");
+  const double mach = s.freestream.mach, angle = s.body->angle_deg;
+  if (is_training_point(t, mach, angle))
+    throw scene::InputError(path + ": a training point of the table (Mach " + format_number(mach) +
+                            ", " + format_number(angle) + " deg): its error is in sample");
+  if (is_case_study(s))
+    throw scene::InputError(path + ": a case study's wedge: the case studies are predictions");
+  const auto m = training_mach_range(t);
+  const auto a = training_angle_range(t);
+  if (!m || !a || !m->contains(mach) || !a->contains(angle))
+    throw scene::InputError(path +
+                            ": outside the table's training ranges: its error is an "
+                            "extrapolation's, not the table's");
+}
+
+AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, double gas,
+                       const CalibrationTable& t) {
+  const std::string scene_path =
+      (seed_dir.parent_path() / (seed_dir.filename().string() + ".yaml")).string();
+  const scene::Scene s = scene::load_scene(scene_path);
+  check_unseen_wedge(scene_path, s, t);
+  const std::string sum_path = (seed_dir / "summary.json").string();
+  const nlohmann::json j = read_run_summary(sum_path, "no summary (an unfinished run?)");
+  if (j.value("shock", "") != "attached")
+    throw scene::InputError(sum_path + ": key 'shock': not attached");
+  const nlohmann::json& d = j.value("details", nlohmann::json::object());
+  const double e = number_or_nan(d, "restitution");
+  const double want =
+      interpolate_restitution(t, s.freestream.mach, s.body->angle_deg).value_or(scene::kNaN);
+  if (!(std::abs(e - quantised_restitution(want)) <= kSameRestitution))
+    throw scene::InputError(sum_path + ": key 'details.restitution': " + format_number(e, 8) +
+                            " is not the table's e " + format_number(want, 8) +
+                            "; rerun the wedge with that table");
+  AngleCheckRun r;
+  r.wedge = wedge_dir.filename().string();
+  r.angle = number_or_nan(j, "shock_angle_deg");
+  r.half_width = number_or_nan(j, "shock_angle_ci_deg");
+  r.gas = gas;
+  r.flow_throughs = number_or_nan(d.value("averaging", nlohmann::json::object()), "flow_throughs");
+  if (!std::isfinite(r.angle) || !std::isfinite(r.half_width))
+    throw scene::InputError(sum_path + ": key 'shock_angle_ci_deg': no angle with an interval");
+  return r;
+}
+
+}  // namespace
+
+AngleScatter angle_scatter_of(const std::vector<AngleCheckRun>& runs) {
+  if (runs.size() < kMinAngleCheckRuns)
+    throw scene::InputError("calibrate: --angle-check-runs: " + std::to_string(runs.size()) +
+                            " runs, at least " + std::to_string(kMinAngleCheckRuns) +
+                            " needed for a scatter");
+  double err2 = 0, noise2 = 0;
+  std::set<std::string> wedges;
+  std::vector<double> averaging;
+  for (const AngleCheckRun& r : runs) {
+    const double err = r.angle - r.gas, sd = r.half_width / shockfit::kNormal95;
+    err2 += err * err;
+    noise2 += sd * sd;
+    wedges.insert(r.wedge);
+    averaging.push_back(r.flow_throughs);
+  }
+  const auto n = static_cast<double>(runs.size());
+  std::nth_element(averaging.begin(), averaging.begin() + static_cast<long>(averaging.size() / 2),
+                   averaging.end());
+  AngleScatter a;
+  a.deg = std::sqrt(std::max(0.0, (err2 - noise2) / n));
+  a.rms_deg = std::sqrt(err2 / n);
+  a.flow_throughs = averaging[averaging.size() / 2];
+  a.runs = static_cast<int>(runs.size());
+  a.wedges = static_cast<int>(wedges.size());
+  return a;
+}
+
+nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
+                                       const std::string& table_path) {
+  const std::string path = table_path.empty() ? builtin_calibration_path() : table_path;
+  CalibrationTable table = read_calibration(path);  // a bad table fails before anything
+  if (!table.model)
+    throw scene::InputError(path +
+                            ": key 'model': an old table (entries only) has no fit to judge");
+  std::vector<AngleCheckRun> runs;
+  for (const auto& dir : dirs) {
+    if (!fs::is_directory(dir))
+      throw scene::InputError(dir +
+                              ": --angle-check-runs: no such directory (an angle_check.sh "
+                              "output expected)");
+    std::vector<fs::path> wedges;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_directory() && e.path().filename().string().rfind("oos_", 0) == 0)
+        wedges.push_back(e.path());
+    std::sort(wedges.begin(), wedges.end());
+    for (const fs::path& w : wedges) {
+      const nlohmann::json gas = read_run_summary((w / "gas" / "summary.json").string(),
+                                                  "no gas angle (an unfinished wedge?)");
+      std::vector<fs::path> seeds;
+      for (const auto& e : fs::directory_iterator(w))
+        if (e.is_directory() && e.path().filename().string().rfind("seed", 0) == 0)
+          seeds.push_back(e.path());
+      std::sort(seeds.begin(), seeds.end());
+      for (const fs::path& sd : seeds)
+        runs.push_back(read_run(w, sd, number_or_nan(gas, "shock_angle_deg"), table));
+    }
+  }
+  for (const AngleCheckRun& r : runs)
+    if (!(std::abs(r.flow_throughs - runs.front().flow_throughs) <= kSameAveraging))
+      throw scene::InputError("calibrate: --angle-check-runs: " + r.wedge + " averaged " +
+                              format_number(r.flow_throughs) + " flow-through times, " +
+                              runs.front().wedge + " " + format_number(runs.front().flow_throughs) +
+                              ": the scatter belongs to one averaging");
+  const AngleScatter a = angle_scatter_of(runs);
+  table.angle_scatter = a;
+  write_calibration(table, path);
+  return {{"table", path},        {"angle_scatter_deg", a.deg},
+          {"rms_deg", a.rms_deg}, {"flow_throughs", a.flow_throughs},
+          {"runs", a.runs},       {"wedges", a.wedges}};
+}
+
+}  // namespace pipeline

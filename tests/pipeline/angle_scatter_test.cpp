@@ -1,0 +1,139 @@
+// The table's own attached-angle error measured on unseen wedges: the
+// formula, the block's round trip, and what `--angle-check-runs` refuses.
+#include "pipeline/angle_scatter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "pipeline/calibration.hpp"
+#include "scene/errors.hpp"
+#include "scene/io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kSource = SOURCE_DIR;
+constexpr double kTol = 1e-12;
+
+fs::path fresh(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("shockgrain_angle_scatter_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// An angle_check.sh wedge directory: the gas angle and `seeds` granular runs
+// at restitution e, each `error` off the gas angle with half-width `hw`.
+void write_wedge(const fs::path& dir, double mach, double angle, double e, int seeds, double error,
+                 double hw) {
+  std::ostringstream n;
+  n << "oos_M" << mach << "_" << angle;
+  const std::string name = n.str();
+  const fs::path w = dir / name;
+  fs::create_directories(w / "gas");
+  const double gas = 20.0;
+  scene::write_json_atomic((w / "gas" / "summary.json").string(),
+                           {{"shock", "attached"}, {"shock_angle_deg", gas}});
+  for (int k = 0; k < seeds; ++k) {
+    const std::string seed = "seed" + std::to_string(k + 1);
+    std::ofstream(w / (seed + ".yaml"))
+        << "name: " << name << "\nbody: {kind: wedge, angle_deg: " << angle
+        << ", length: 1.0}\nfreestream: {mach: " << mach << "}\ngranular: {seed: " << k + 1
+        << "}\n";
+    fs::create_directories(w / seed);
+    const double sign = k % 2 == 0 ? 1.0 : -1.0;
+    scene::write_json_atomic(
+        (w / seed / "summary.json").string(),
+        {{"shock", "attached"},
+         {"shock_angle_deg", gas + sign * error},
+         {"shock_angle_ci_deg", hw},
+         {"details", {{"restitution", e}, {"averaging", {{"flow_throughs", 16.0}}}}}});
+  }
+}
+
+double table_e(const pipeline::CalibrationTable& t, double mach, double angle) {
+  return pipeline::quantised_restitution(*pipeline::interpolate_restitution(t, mach, angle));
+}
+}  // namespace
+
+TEST(AngleScatter, IsTheRunsErrorLessTheirOwnNoise) {
+  // Errors +-0.3 deg, half-widths 1.96 x 0.2: sqrt(0.09 - 0.04).
+  std::vector<pipeline::AngleCheckRun> runs;
+  for (int k = 0; k < 12; ++k)
+    runs.push_back({std::to_string(k / 3), 20.0 + (k % 2 ? 0.3 : -0.3), 1.96 * 0.2, 20.0, 16.0});
+  const pipeline::AngleScatter a = pipeline::angle_scatter_of(runs);
+  EXPECT_NEAR(a.deg, std::sqrt(0.09 - 0.04), 1e-9);
+  EXPECT_NEAR(a.rms_deg, 0.3, 1e-9);
+  EXPECT_EQ(a.runs, 12);
+  EXPECT_EQ(a.wedges, 4);
+  EXPECT_DOUBLE_EQ(a.flow_throughs, 16.0);
+  // Noise larger than the error leaves no table error (floored at zero).
+  for (auto& r : runs) r.half_width = 1.96;
+  EXPECT_DOUBLE_EQ(pipeline::angle_scatter_of(runs).deg, 0.0);
+  runs.resize(pipeline::kMinAngleCheckRuns - 1);
+  EXPECT_THROW(pipeline::angle_scatter_of(runs), scene::InputError);
+}
+
+TEST(AngleScatter, IsWrittenIntoTheTableAndWidensTheBand) {
+  const fs::path d = fresh("write");
+  const std::string table = (d / "calibration.yaml").string();
+  fs::copy_file(kSource + "/pipeline/calibration.yaml", table);
+  pipeline::CalibrationTable t = pipeline::read_calibration(table);
+  t.angle_scatter.reset();
+  pipeline::write_calibration(t, table);
+  const double loo = pipeline::table_angle_scatter_deg(t);
+  // Four unseen wedges inside the training ranges, three seeds each.
+  const fs::path runs = d / "runs";
+  const double wedges[4][2] = {{2.7, 12.5}, {3.3, 15.5}, {4.2, 9.5}, {5.3, 18.5}};
+  for (const auto& w : wedges) write_wedge(runs, w[0], w[1], table_e(t, w[0], w[1]), 3, 0.3, 0.392);
+  const nlohmann::json r = pipeline::calibrate_angle_scatter({runs.string()}, table);
+  EXPECT_EQ(r["runs"], 12);
+  EXPECT_EQ(r["wedges"], 4);
+  const pipeline::CalibrationTable after = pipeline::read_calibration(table);
+  ASSERT_TRUE(after.angle_scatter);
+  EXPECT_NEAR(after.angle_scatter->deg, std::sqrt(0.09 - 0.04), 1e-9);
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(after), after.angle_scatter->deg, kTol);
+  EXPECT_NE(pipeline::table_angle_scatter_deg(after), loo);
+  // Everything else stays.
+  EXPECT_EQ(after.entries.size(), t.entries.size());
+  EXPECT_EQ(after.bow_shock.has_value(), t.bow_shock.has_value());
+  EXPECT_EQ(after.fits.size(), t.fits.size());
+}
+
+TEST(AngleScatter, RefusesRunsThatCannotJudgeTheTable) {
+  const fs::path d = fresh("refuse");
+  const std::string table = (d / "calibration.yaml").string();
+  fs::copy_file(kSource + "/pipeline/calibration.yaml", table);
+  const pipeline::CalibrationTable t = pipeline::read_calibration(table);
+  const std::string before = scene::read_file(table);
+  auto refused = [&](const fs::path& runs, const std::string& words) {
+    try {
+      pipeline::calibrate_angle_scatter({runs.string()}, table);
+      ADD_FAILURE() << "accepted " << runs;
+    } catch (const scene::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(scene::read_file(table), before) << "the table was changed";
+  };
+  // Another table's e.
+  write_wedge(d / "e", 3.3, 15.5, table_e(t, 3.3, 15.5) + 0.001, 12, 0.3, 0.392);
+  refused(d / "e", "details.restitution");
+  // A training point (Mach 4, 11 deg).
+  write_wedge(d / "train", 4.0, 11.0, table_e(t, 4.0, 11.0), 12, 0.3, 0.392);
+  refused(d / "train", "training point");
+  // A case study (Mach 3, 10 deg).
+  write_wedge(d / "case", 3.0, 10.0, table_e(t, 3.0, 10.0), 12, 0.3, 0.392);
+  refused(d / "case", "case study");
+  // Outside the training ranges (Mach 7).
+  write_wedge(d / "outside", 7.0, 12.0, table_e(t, 7.0, 12.0), 12, 0.3, 0.392);
+  refused(d / "outside", "training ranges");
+  // Too few runs.
+  write_wedge(d / "few", 3.3, 15.5, table_e(t, 3.3, 15.5), 5, 0.3, 0.392);
+  refused(d / "few", "at least");
+  refused(d / "missing", "no such directory");
+}

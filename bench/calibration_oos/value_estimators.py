@@ -2,16 +2,19 @@
 """Candidate values of an attached shock's angle, refitted offline from recorded runs.
 
 For each run's shockfit summary.json (interval_group_values, group_own_angles_deg):
-  P   the pooled fit's angle and interval (what shockfit reports),
+  P   the pooled fit's angle (shock_angle_pooled_deg where present) and the reported interval,
   G   the mean of the groups refitted on the pooled stations, Student's t x standard error
       (at least the own fits' half-width),
   O   the mean of the groups' own fits (outliers beyond 3.5 robust sigmas left out), t x SE,
-  OG  O's value with G's half-width (the reported interval's rule).
+  OG  O's value with the larger of the two half-widths (what shockfit reports since the
+      groups' own fits' mean became the angle).
 Prints per candidate: error against the gas angle (RMS / max / mean), the within-wedge sd,
 the median half-width and how many same-wedge pairs differ by less than their combined
-half-widths (docs/shockfit.md, "The groups' mean standoff").
+half-widths (docs/shockfit.md, "The groups' mean standoff"). With --scatter DEG first, also
+how many runs' prediction bands (hypot(half-width, 1.96 DEG), pipeline::band_angle_half_width_deg
+with the table's scatter DEG) hold the gas angle.
 
-  bench/calibration_oos/value_estimators.py ANGLE_CHECK_OUTDIR...
+  bench/calibration_oos/value_estimators.py [--scatter DEG] ANGLE_CHECK_OUTDIR...
       (directories written by angle_check.sh)
   bench/calibration_oos/value_estimators.py --coverage GAS_ANGLE_DEG COVERAGE_OUTDIR
       (a directory written by bench/coverage/coverage.sh)
@@ -32,8 +35,9 @@ def t95(dof):
 
 
 def near_median(v):
+    # shockfit::near_median: the median (mean of the middle two), the upper middle distance
     m = st.median(v)
-    s = 1.4826 * st.median([abs(x - m) for x in v])
+    s = 1.4826 * sorted(abs(x - m) for x in v)[len(v) // 2]
     return [x for x in v if abs(x - m) <= OUTLIER_SIGMAS * s] if s > 0 else v
 
 
@@ -50,7 +54,11 @@ def candidates(summary, gas):
     mg, hg = mean_and_half(g)
     mo, ho = mean_and_half(near_median(o) if len(o) >= 4 else o)
     both = max(hg, ho) if math.isfinite(ho) else hg
-    return dict(gas=gas, P=(summary['shock_angle_deg'], summary['shock_angle_ci_deg']),
+    # Since the groups' own fits' mean is the reported angle, the pooled line's is kept aside.
+    pooled = summary.get('shock_angle_pooled_deg')
+    if pooled is None:
+        pooled = summary['shock_angle_deg']
+    return dict(gas=gas, P=(pooled, summary['shock_angle_ci_deg']),
                 G=(mg, both), O=(mo, ho), OG=(mo, both))
 
 
@@ -73,13 +81,15 @@ def angle_check_runs(dirs):
     return out
 
 
-def report(groups):
+def report(groups, scatter=None):
     for k in ('P', 'G', 'O', 'OG'):
-        errs, var, hws, pairs, npairs = [], [], [], 0, 0
+        errs, var, hws, pairs, npairs, band = [], [], [], 0, 0, 0
         for rs in groups.values():
             vals = [r[k][0] for r in rs]
             errs += [r[k][0] - r['gas'] for r in rs]
             hws += [r[k][1] for r in rs]
+            if scatter is not None:
+                band += sum(abs(r[k][0] - r['gas']) <= math.hypot(r[k][1], 1.96 * scatter) for r in rs)
             if len(vals) > 1:
                 var.append(st.variance(vals))
             for i in range(len(rs)):
@@ -90,7 +100,8 @@ def report(groups):
         print('%-3s runs %d  error RMS %.3f max %.2f mean %+.3f  within sd %.3f  median half-width %.3f'
               '  pairs %d/%d' % (k, len(errs), rms, max(abs(e) for e in errs), st.mean(errs),
                                  math.sqrt(st.mean(var)) if var else float('nan'), st.median(hws),
-                                 pairs, npairs))
+                                 pairs, npairs) +
+              ('  band holds gas %d/%d' % (band, len(errs)) if scatter is not None else ''))
 
 
 if __name__ == '__main__':
@@ -99,6 +110,8 @@ if __name__ == '__main__':
         runs = [candidates(j, gas) for j in (load(p) for p in
                 sorted(glob.glob(sys.argv[3] + '/s*/s/summary.json'))) if j['shock'] == 'attached']
         report({'all': runs})
+    elif len(sys.argv) >= 4 and sys.argv[1] == '--scatter':
+        report(angle_check_runs(sys.argv[3:]), float(sys.argv[2]))
     elif len(sys.argv) >= 2:
         report(angle_check_runs(sys.argv[1:]))
     else:

@@ -30,6 +30,16 @@ constexpr double kSameRestitution = 0.5 * kRestitutionQuantum + 1e-12;
 // scatter belongs to the averaging the band is used at.
 constexpr double kSameAveraging = 0.5;
 
+// dir's subdirectories whose names start with `prefix`, sorted.
+std::vector<fs::path> subdirs_named(const fs::path& dir, const std::string& prefix) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_directory() && e.path().filename().string().rfind(prefix, 0) == 0)
+      out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 bool is_training_point(const CalibrationTable& t, double mach, double angle_deg) {
   return std::any_of(t.entries.begin(), t.entries.end(), [&](const CalibrationEntry& c) {
     return std::abs(c.mach - mach) <= kSamePoint && std::abs(c.angle_deg - angle_deg) <= kSamePoint;
@@ -125,20 +135,10 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
       throw scene::InputError(dir +
                               ": --angle-check-runs: no such directory (an angle_check.sh "
                               "output expected)");
-    std::vector<fs::path> wedges;
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.is_directory() && e.path().filename().string().rfind("oos_", 0) == 0)
-        wedges.push_back(e.path());
-    std::sort(wedges.begin(), wedges.end());
-    for (const fs::path& w : wedges) {
+    for (const fs::path& w : subdirs_named(dir, "oos_")) {
       const nlohmann::json gas = read_run_summary((w / "gas" / "summary.json").string(),
                                                   "no gas angle (an unfinished wedge?)");
-      std::vector<fs::path> seeds;
-      for (const auto& e : fs::directory_iterator(w))
-        if (e.is_directory() && e.path().filename().string().rfind("seed", 0) == 0)
-          seeds.push_back(e.path());
-      std::sort(seeds.begin(), seeds.end());
-      for (const fs::path& sd : seeds)
+      for (const fs::path& sd : subdirs_named(w, "seed"))
         runs.push_back(read_run(w, sd, number_or_nan(gas, "shock_angle_deg"), table));
     }
   }

@@ -40,6 +40,14 @@ scene::Lattice shock_at(const scene::Scene& s, double beta) {
   return lat;
 }
 
+// A group's fields with no jump anywhere: no shock found on them.
+scene::Lattice blank_lattice(const scene::Scene& s) {
+  scene::Lattice blank = shockfit_test::domain_lattice(s, 0.005);
+  blank.add("volume_fraction", std::nan(""));
+  blank.add("v", std::nan(""));
+  return blank;
+}
+
 }  // namespace
 
 TEST(GroupInterval, StudentQuantiles) {
@@ -84,10 +92,7 @@ TEST(GroupInterval, TooFewGroupsFindingTheShockKeepTheBootstrap) {
   shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
   const double bootstrap = r.shock_angle_ci_deg;
   std::vector<scene::Lattice> groups(3, shock_at(s, beta));
-  scene::Lattice blank = shockfit_test::domain_lattice(s, 0.005);
-  blank.add("volume_fraction", std::nan(""));
-  blank.add("v", std::nan(""));
-  groups.insert(groups.end(), 5, blank);
+  groups.insert(groups.end(), 5, blank_lattice(s));
   shockfit::apply_group_interval(s, groups, r);
   EXPECT_EQ(r.interval_method, "bootstrap");
   EXPECT_EQ(r.interval_groups, 0);
@@ -142,10 +147,7 @@ TEST(GroupInterval, TooFewOwnFitsKeepThePooledAngle) {
   shockfit::ShockResult r = shockfit::locate_shock(s, shock_at(s, beta));
   const double pooled = r.shock_angle_deg;
   std::vector<scene::Lattice> groups(5, shock_at(s, beta + 0.3 * kDeg));
-  scene::Lattice blank = shockfit_test::domain_lattice(s, 0.005);
-  blank.add("volume_fraction", std::nan(""));
-  blank.add("v", std::nan(""));
-  groups.insert(groups.end(), 3, blank);
+  groups.insert(groups.end(), 3, blank_lattice(s));
   shockfit::apply_group_interval(s, groups, r);
   ASSERT_EQ(r.interval_method, "groups");
   EXPECT_EQ(r.interval_groups, 5);

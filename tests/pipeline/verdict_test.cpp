@@ -353,11 +353,12 @@ TEST(CostEstimate, PredictorFollowsTheParticleCountAndRefusesAnAbsurdOne) {
   constexpr double kRelTolerance = 1e-9;
   EXPECT_NEAR(at_4x / at_default, 8.0, 8.0 * kRelTolerance);
   // ... and the flow-through times it simulates: a warm-up of 1.75 and the
-  // averaging (16 by default on an attached shock).
+  // averaging (kAttachedShockAveraging by default on an attached shock).
   const double at_4 =
       pipeline::estimate_run(scene::parse_scene(wedge + "granular: {averaging: 4}\n"), "granular")
           .predictor_cpu_seconds;
-  EXPECT_NEAR(at_default / at_4, (1.75 + 16.0) / (1.75 + 4.0), kRelTolerance);
+  EXPECT_NEAR(at_default / at_4, (1.75 + scene::kAttachedShockAveraging) / (1.75 + 4.0),
+              kRelTolerance);
   const double capped =
       pipeline::estimate_run(
           scene::parse_scene(wedge + "granular: {particles: 36800, cpu_budget: 20}\n"), "granular")

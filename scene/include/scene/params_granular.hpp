@@ -13,14 +13,16 @@ namespace scene {
 inline constexpr double kDefaultFlowParticles = 9200.0;
 
 // The averaging an attached shock's angle gets when the scene sets none. At
-// the default 4 flow-through times one run's angle scatters by 0.27 deg (sd
-// over seeds, 16 unseen wedges x 3 seeds), so no honest 95% interval can be
-// within +-0.25 deg; at 16 the scatter is 0.15 deg and the intervals, which
-// shrink with it, are (docs/shockfit.md, "Sixteen flow-through times").
+// 4 flow-through times one run's angle scatters by 0.27 deg (sd over seeds,
+// 16 unseen wedges x 3 seeds), so no honest 95% interval can be within
+// +-0.25 deg. With the groups' own fits' mean as the angle, 12 meets the
+// angle, interval and CPU targets on 16 fresh wedges x 3 seeds (0.177 deg
+// RMS, pairs 46 / 48, median half-width 0.236, every run under 10 CPU s;
+// 16 cost a third more: docs/shockfit.md, "Twelve flow-through times?").
 // Averaging longer moves no mean (16 against 4: -0.02 deg, 95% -0.13 to
 // +0.09), so tables fitted at 4 serve. Bow shocks keep 4: their
 // calibrations and bands were measured there.
-inline constexpr double kAttachedShockAveraging = 16.0;
+inline constexpr double kAttachedShockAveraging = 12.0;
 
 // Independent replicas (seeds) a run averages when the scene sets none.
 inline constexpr int kDefaultReplicas = 2;

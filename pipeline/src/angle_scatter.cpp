@@ -6,14 +6,13 @@
 #include <set>
 
 #include "json_fields.hpp"
+#include "pipeline/calibration_training.hpp"
 #include "pipeline/rejudge.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
 #include "scene/errors.hpp"
-#include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
-#include "scene/units.hpp"
 #include "shockfit/group_interval.hpp"
 
 namespace pipeline {
@@ -22,10 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A wedge this close to a training point (Mach, deg) is that point.
-constexpr double kSamePoint = 1e-9;
-// A run's e is the table's as applied (rounded to kRestitutionQuantum).
-constexpr double kSameRestitution = 0.5 * kRestitutionQuantum + 1e-12;
 // Runs of one measure share their averaging (flow-through times): the
 // scatter belongs to the averaging the band is used at.
 constexpr double kSameAveraging = 0.5;
@@ -42,7 +37,7 @@ std::vector<fs::path> subdirs_named(const fs::path& dir, const std::string& pref
 
 bool is_training_point(const CalibrationTable& t, double mach, double angle_deg) {
   return std::any_of(t.entries.begin(), t.entries.end(), [&](const CalibrationEntry& c) {
-    return std::abs(c.mach - mach) <= kSamePoint && std::abs(c.angle_deg - angle_deg) <= kSamePoint;
+    return same_wedge({c.mach, c.angle_deg}, {mach, angle_deg});
   });
 }
 
@@ -78,7 +73,7 @@ AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, doub
   const double e = number_or_nan(d, "restitution");
   const double want =
       interpolate_restitution(t, s.freestream.mach, s.body->angle_deg).value_or(scene::kNaN);
-  if (!(std::abs(e - quantised_restitution(want)) <= kSameRestitution))
+  if (!is_applied_restitution(e, want))
     throw scene::InputError(sum_path + ": key 'details.restitution': " + format_number(e, 8) +
                             " is not the table's e " + format_number(want, 8) +
                             "; rerun the wedge with that table");

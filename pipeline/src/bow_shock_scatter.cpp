@@ -25,8 +25,6 @@ using scene::kNaN;
 constexpr double kSameStation = 1e-9;
 // Fewer common stations than this say nothing about a shock's shape.
 constexpr std::size_t kMinStations = 3;
-// A resolved scene's e is the table's, rounded to 1e-6 when applied.
-constexpr double kSameRestitution = 0.5 * kRestitutionQuantum + 1e-12;
 
 bool same_point(scene::Vec2 a, scene::Vec2 b) {
   if (!std::isfinite(a.x) || !std::isfinite(b.x)) return true;  // a file without surface columns
@@ -51,7 +49,7 @@ void check_table_restitution(const std::string& run_dir, const CalibrationTable&
 
 bool ran_at_table_restitution(const scene::Scene& ran, const CalibrationTable& t) {
   const double e = interpolate_restitution(t, ran.freestream.mach, kNaN).value_or(kNaN);
-  return std::abs(e - ran.granular.restitution) <= kSameRestitution;
+  return is_applied_restitution(ran.granular.restitution, e);
 }
 
 StationErrors station_errors(const std::string& granular_csv, const std::string& gas_csv) {

@@ -23,6 +23,11 @@ inline constexpr double kRestitutionQuantum = 1e-6;
 inline double quantised_restitution(double e) {
   return std::round(e / kRestitutionQuantum) * kRestitutionQuantum;
 }
+// Whether a run's e is the table's `table_e` as applied (rounded to
+// kRestitutionQuantum): the e a measure made on the run belongs to.
+inline bool is_applied_restitution(double applied, double table_e) {
+  return std::abs(table_e - applied) <= 0.5 * kRestitutionQuantum + 1e-12;
+}
 // Out-of-sample runs use the scene's seed plus this offset; the fits'
 // sweeps used seed .. seed + replicas - 1, so an offset above the replica
 // count gives replicas no sweep has seen.

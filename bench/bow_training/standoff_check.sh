@@ -7,7 +7,11 @@
 # mean's error. Body lengths throughout (shockfit's standoff).
 #   bench/bow_training/standoff_check.sh SCENE.yaml GAS_STANDOFF TABLE OUTDIR SEED...
 # With E=e in the environment the runs take that restitution instead of the
-# table's. Run from the repository root after the build.
+# table's; with GAS_CSV=the gas's shock.csv (shockfit on a uniform grid of the
+# same body) each line adds the stations accepted in both, their mean and RMS
+# relative error (station_errors.py). The standoff is the prediction's (after
+# a table's station bias, where the table has one for the body's shape).
+# Run from the repository root after the build.
 set -euo pipefail
 scene=$1; gas=$2; table=$3; out=$4; shift 4
 bin=${BIN:-build/bin}
@@ -22,10 +26,11 @@ for s in "$@"; do
   { cat "$scene"; printf '\ngranular: {seed: %s%s}\n' "$s" "$extra"; } > "$d/scene.yaml"
   CI=1 "$bin/pipeline" predict "$d/scene.yaml" --predictor granular --calibration "$table" \
     --out "$d/p" > "$d/predict.json" 2> "$d/err.txt"
-  sf="$d/p/shockfit/summary.json"
   e=$(value "$d/p/granular/summary.json" restitution)
-  st=$(value "$sf" standoff); ci=$(value "$sf" standoff_ci)
-  echo "$s $e $st $ci $(awk -v a="$st" -v g="$gas" 'BEGIN { printf "%+.4f", a / g - 1 }')" \
+  st=$(value "$d/p/summary.json" standoff); ci=$(value "$d/p/summary.json" standoff_ci)
+  stations=""
+  [ -z "${GAS_CSV:-}" ] || stations=" $(python3 "$(dirname "$0")/station_errors.py" "$d/p/shock.csv" "$GAS_CSV")"
+  echo "$s $e $st $ci $(awk -v a="$st" -v g="$gas" 'BEGIN { printf "%+.4f", a / g - 1 }')$stations" \
     | tee -a "$out/runs.txt.part"
 done
 awk -v g="$gas" '{ n++; s += $3 } END { printf "%d seeds: mean standoff %.4f against %.4f: %+.2f%%\n", n, s / n, g, 100 * (s / n / g - 1) }' \

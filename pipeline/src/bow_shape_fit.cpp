@@ -183,6 +183,8 @@ StationErrors wedge_station_errors(const BowTrainingRun& run, const CalibrationT
   st.body = run.scene.name;
   st.mach = run.scene.freestream.mach;
   st.cpu_seconds = m.cpu + run.grid_cpu_seconds;
+  st.shape = scene::bow_shape_class(*run.scene.body).value_or("");
+  st.standoff_relative = standoff_relative_error(dir + "/shockfit/summary.json", run);
   return st;
 }
 

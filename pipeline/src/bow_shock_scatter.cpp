@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "json_fields.hpp"
 #include "pipeline/bow_shape_fit.hpp"
+#include "pipeline/bow_station_bias.hpp"
 #include "pipeline/grid_runs.hpp"
 #include "pipeline/rejudge.hpp"
 #include "pipeline/run.hpp"
@@ -45,6 +47,46 @@ void check_table_restitution(const std::string& run_dir, const CalibrationTable&
                             std::to_string(e) + " (" + table_path +
                             "); rerun the body with that table and no restitution of its own");
 }
+
+// Per shape class without its own e fit, the fold of its bodies' stations
+// (bow_station_bias.hpp); kept where it beats the uncorrected stations out of
+// sample. A shape with an own e runs its bodies elsewhere than at the law.
+nlohmann::json fit_station_biases(const std::vector<StationErrors>& bodies, BowShockScatter& w) {
+  std::map<std::string, std::vector<StationErrors>> by_shape;
+  for (const auto& b : bodies)
+    if (!b.shape.empty() && !w.shape(b.shape)) by_shape[b.shape].push_back(b);
+  nlohmann::json report = nlohmann::json::array();
+  for (const auto& [shape, members] : by_shape) {
+    const auto fit = fit_station_bias(shape, members);
+    if (!fit) {
+      report.push_back({{"shape", shape},
+                        {"bodies", members.size()},
+                        {"used", false},
+                        {"note", "no fit: fewer than " + std::to_string(kMinBiasBodies) +
+                                     " bodies, a body without station normals or standoff, "
+                                     "or a fold that would turn a distance negative"}});
+      continue;
+    }
+    const bool pays = fit->relative_rms < fit->uncorrected_rms;
+    nlohmann::json per_body = nlohmann::json::array();
+    for (const auto& b : fit->bodies)
+      per_body.push_back({{"body", b.body},
+                          {"mach", b.mach},
+                          {"relative_rms", b.rms},
+                          {"standoff_relative_error", b.standoff},
+                          {"left_out_relative_rms", b.loo_rms},
+                          {"left_out_standoff_relative_error", b.loo_standoff}});
+    report.push_back({{"shape", shape},
+                      {"model", fit->model},
+                      {"coefficients", fit->coefficients},
+                      {"left_out_relative_rms", fit->relative_rms},
+                      {"uncorrected_relative_rms", fit->uncorrected_rms},
+                      {"used", pays},
+                      {"bodies", per_body}});
+    if (pays) w.station_biases.push_back(*fit);
+  }
+  return report;
+}
 }  // namespace
 
 bool ran_at_table_restitution(const scene::Scene& ran, const CalibrationTable& t) {
@@ -65,6 +107,7 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
       continue;
     const double r = (g[i].distance - c[i].distance) / c[i].distance;
     out.relative.push_back(r);
+    out.inclination_deg.push_back(inclination_deg(g[i].normal));
     ss += r * r;
     sum += r;
   }
@@ -115,7 +158,16 @@ StationErrors run_station_errors(const std::string& run_dir) {
   e.body = r.scene.name;
   e.mach = r.scene.freestream.mach;
   e.cpu_seconds = r.predictor_cpu_seconds + r.grid_cpu_seconds;
+  e.shape = scene::bow_shape_class(*r.scene.body).value_or("");
+  e.standoff_relative = standoff_relative_error(run_dir + "/shockfit/summary.json", r);
   return e;
+}
+
+double standoff_relative_error(const std::string& granular_summary, const BowTrainingRun& r) {
+  const double d = number_or_nan(
+      read_run_summary(granular_summary, "not found (shockfit's summary of the granular run)"),
+      "standoff");
+  return d / gas_standoff(r) - 1.0;
 }
 
 BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies) {
@@ -182,6 +234,14 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
     scatter.cpu_seconds += fitted.cpu_seconds;
     shape_report = {{"bodies", fitted.report}, {"fits", fitted.shapes}};
   }
+  // A fold measured on bodies these runs do not hold stays, where its shape
+  // still runs at the law.
+  if (table.bow_shock)
+    for (const auto& old : table.bow_shock->station_biases)
+      if (!scatter.shape(old.shape) &&
+          std::none_of(bodies.begin(), bodies.end(),
+                       [&](const StationErrors& b) { return b.shape == old.shape; }))
+        scatter.station_biases.push_back(old);
   // The law the bodies ran at travels with what was measured under it.
   if (const RestitutionFit* law = blunt_restitution_law(table)) scatter.restitution_law = *law;
   table.bow_shock = scatter;
@@ -192,6 +252,34 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
           {"cpu_seconds", json_number(table.bow_shock->cpu_seconds)},
           {"bodies", per_body},
           {"shapes", shape_report}};
+}
+
+nlohmann::json calibrate_station_biases(const std::vector<std::string>& run_dirs,
+                                        const std::string& table_path) {
+  const std::string path = table_path.empty() ? builtin_calibration_path() : table_path;
+  CalibrationTable table = read_calibration(path);
+  if (!table.bow_shock || !table.bow_shock->restitution_law)
+    throw scene::InputError(path +
+                            ": key 'bow_shock.restitution_law': the table records no blunt law "
+                            "for a station bias to belong to (run --bow-shock-runs first)");
+  std::vector<StationErrors> bodies;
+  for (const auto& dir : run_dirs) {
+    if (!std::filesystem::is_directory(dir))
+      throw scene::InputError(
+          dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
+    check_table_restitution(dir, table, path);
+    bodies.push_back(run_station_errors(dir));
+  }
+  BowShockScatter w = *table.bow_shock;
+  // A shape these runs hold is refitted from them alone.
+  std::erase_if(w.station_biases, [&](const BowStationBias& b) {
+    return std::any_of(bodies.begin(), bodies.end(),
+                       [&](const StationErrors& e) { return e.shape == b.shape; });
+  });
+  const nlohmann::json report = fit_station_biases(bodies, w);
+  table.bow_shock = w;
+  write_calibration(table, path);
+  return {{"table", path}, {"station_bias", report}};
 }
 
 }  // namespace pipeline

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "pipeline/bow_station_bias.hpp"
 #include "pipeline/calibration.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
@@ -99,6 +100,88 @@ BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const s
     f.points.push_back(p);
   }
   return f;
+}
+
+BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
+                                 const std::string& key) {
+  if (!n.IsMap() || !n["shape"] || !n["model"] || !n["coefficients"] || !n["relative_rms"])
+    bad(path, n, key, "expected a map {shape, model, coefficients, relative_rms, ...}");
+  BowStationBias b;
+  b.shape = n["shape"].as<std::string>();
+  b.model = n["model"].as<std::string>();
+  const std::size_t want = station_bias_coefficients(b.model);
+  if (want == 0)
+    bad(path, n["model"], key + ".model",
+        "unknown model '" + b.model + "' (inclination or inclination_mach)");
+  const auto c = n["coefficients"];
+  if (!c.IsSequence() || c.size() != want)
+    bad(path, c, key + ".coefficients",
+        "expected " + std::to_string(want) + " coefficients for " + b.model);
+  for (const auto& x : c) {
+    const double v = x.as<double>();
+    if (!std::isfinite(v)) bad(path, x, key + ".coefficients", "not a finite number");
+    b.coefficients.push_back(v);
+  }
+  b.relative_rms = n["relative_rms"].as<double>();
+  if (!(std::isfinite(b.relative_rms) && b.relative_rms >= 0))
+    bad(path, n["relative_rms"], key + ".relative_rms", "expected a finite number >= 0");
+  b.uncorrected_rms = optional_number(n, "uncorrected_rms", kNaN);
+  b.max_inclination_deg = optional_number(n, "max_inclination_deg", 90.0);
+  if (!(b.max_inclination_deg > 0 && b.max_inclination_deg <= 180))
+    bad(path, n["max_inclination_deg"], key + ".max_inclination_deg", "expected (0, 180]");
+  b.cpu_seconds = optional_number(n, "cpu_seconds", kNaN);
+  b.mach_low = optional_number(n, "mach_low", kNaN);
+  b.mach_high = optional_number(n, "mach_high", kNaN);
+  if (!(b.mach_low > 0 && b.mach_high >= b.mach_low))
+    bad(path, n, key, "expected mach_low > 0 and mach_high >= mach_low");
+  if (const auto bodies = n["bodies"]) {
+    if (!bodies.IsSequence()) bad(path, bodies, key + ".bodies", "expected a list");
+    for (const auto& q : bodies) {
+      if (!q.IsMap() || !q["body"]) bad(path, q, key + ".bodies", "expected maps {body, ...}");
+      BowStationBiasBody r;
+      r.body = q["body"].as<std::string>();
+      r.mach = optional_number(q, "mach", kNaN);
+      r.stations = q["stations"] ? q["stations"].as<int>() : 0;
+      r.mean = optional_number(q, "mean", kNaN);
+      r.rms = optional_number(q, "rms", kNaN);
+      r.standoff = optional_number(q, "standoff", kNaN);
+      r.loo_mean = optional_number(q, "loo_mean", kNaN);
+      r.loo_rms = optional_number(q, "loo_rms", kNaN);
+      r.loo_standoff = optional_number(q, "loo_standoff", kNaN);
+      b.bodies.push_back(r);
+    }
+  }
+  return b;
+}
+
+void write_station_bias(YAML::Emitter& e, const BowStationBias& b) {
+  const auto number = [&e](const char* key, double v) {
+    if (std::isfinite(v)) e << YAML::Key << key << YAML::Value << v;
+  };
+  e << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << b.shape << YAML::Key << "model"
+    << YAML::Value << b.model << YAML::Key << "formula" << YAML::Value << YAML::DoubleQuoted
+    << station_bias_formula(b.model) << YAML::Key << "coefficients" << YAML::Value << YAML::Flow
+    << b.coefficients;
+  number("relative_rms", b.relative_rms);
+  number("uncorrected_rms", b.uncorrected_rms);
+  number("max_inclination_deg", b.max_inclination_deg);
+  number("mach_low", b.mach_low);
+  number("mach_high", b.mach_high);
+  number("cpu_seconds", b.cpu_seconds);
+  e << YAML::Key << "bodies" << YAML::Value << YAML::BeginSeq;
+  for (const auto& r : b.bodies) {
+    e << YAML::Flow << YAML::BeginMap << YAML::Key << "body" << YAML::Value << r.body;
+    number("mach", r.mach);
+    e << YAML::Key << "stations" << YAML::Value << r.stations;
+    number("mean", r.mean);
+    number("rms", r.rms);
+    number("standoff", r.standoff);
+    number("loo_mean", r.loo_mean);
+    number("loo_rms", r.loo_rms);
+    number("loo_standoff", r.loo_standoff);
+    e << YAML::EndMap;
+  }
+  e << YAML::EndSeq << YAML::EndMap;
 }
 
 void write_fit(YAML::Emitter& e, const RestitutionFit& f) {
@@ -212,6 +295,19 @@ CalibrationTable read_calibration(const std::string& path) {
           w.shapes.push_back(
               read_shape_fit(path, shapes[i], "bow_shock.shapes[" + std::to_string(i) + "]"));
       }
+      if (const auto biases = b["station_bias"]) {
+        if (!biases.IsSequence())
+          bad(path, biases, "bow_shock.station_bias", "expected a list of station biases");
+        for (std::size_t i = 0; i < biases.size(); ++i) {
+          w.station_biases.push_back(read_station_bias(
+              path, biases[i], "bow_shock.station_bias[" + std::to_string(i) + "]"));
+          if (w.shape(w.station_biases.back().shape))
+            bad(path, biases[i], "bow_shock.station_bias",
+                "the " + w.station_biases.back().shape +
+                    " shape has its own e fit: its bodies do not run at the law the bias was "
+                    "measured under");
+        }
+      }
       if (const auto law = b["restitution_law"]) {
         w.restitution_law = read_fit(path, law, "bow_shock.restitution_law");
         if (uses_angle(w.restitution_law->model))
@@ -290,6 +386,11 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
       for (const auto& f : t.bow_shock->shapes) write_shape_fit(e, f);
       e << YAML::EndSeq;
     }
+    if (!t.bow_shock->station_biases.empty()) {
+      e << YAML::Key << "station_bias" << YAML::Value << YAML::BeginSeq;
+      for (const auto& b : t.bow_shock->station_biases) write_station_bias(e, b);
+      e << YAML::EndSeq;
+    }
     e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
   }
@@ -328,7 +429,10 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# error under its restitution_law, from `pipeline calibrate --bow-shock-runs`;\n"
             "# it widens bow-shock bands. bow_shock.shapes (if present): a blunt shape's own\n"
             "# e = c0 + c1/M^2 and its left-out relative error (`--fit-shapes`); bodies of\n"
-            "# that shape use it.\n"
+            "# that shape use it. bow_shock.station_bias (if present): a shape's fold under\n"
+            "# the law, r = relative distance error by body-normal inclination (and Mach),\n"
+            "# fitted and left-out-checked by `--bow-shock-runs ... --station-bias`; bodies\n"
+            "# of that shape have it taken out of their stations and standoff.\n"
             "# angle_scatter (if present): the table's own angle error on unseen wedges at\n"
             "# the default averaging, from `pipeline calibrate --angle-check-runs`; it widens\n"
             "# attached bands in place of the leave-one-out estimate.\n"
@@ -419,6 +523,12 @@ double BowShapeFit::evaluate(double mach) const {
 const BowShapeFit* BowShockScatter::shape(const std::string& name) const {
   for (const auto& f : shapes)
     if (f.shape == name) return &f;
+  return nullptr;
+}
+
+const BowStationBias* BowShockScatter::station_bias(const std::string& name) const {
+  for (const auto& b : station_biases)
+    if (b.shape == name) return &b;
   return nullptr;
 }
 

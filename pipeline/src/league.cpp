@@ -79,8 +79,9 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
   scene::make_dirs(o.out_dir);
   const AppliedCalibration calib =
       o.predictor == "granular" ? apply_calibration(s, o.calibration_path) : AppliedCalibration{};
-  const Prediction p = predict_shock(s, o.predictor, o.out_dir, o.np, false, calib.angle_scatter_deg,
-                                     calib.bow_shock_relative_rms);
+  const Prediction p = predict_shock(s, o.predictor, o.out_dir, o.np, false,
+                                     calib.angle_scatter_deg, calib.bow_shock_relative_rms,
+                                     calib.station_bias ? &*calib.station_bias : nullptr);
   nlohmann::json j = p.summary();
   j["scene"] = s.name;
   j["reference"] = prediction_reference(s, p);

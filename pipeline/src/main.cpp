@@ -123,6 +123,12 @@ int main(int argc, char** argv) {
         "with --bow-shock-runs: also fit each blunt shape's own e(M) on the runs' bodies "
         "(granular sweeps cached under --out; at least three bodies per shape; a shape "
         "none of the runs holds keeps the table's fit)");
+    bool station_bias = false;
+    calib->add_flag(
+        "--station-bias", station_bias,
+        "with --bow-shock-runs (runs at the table's blunt law): fit each blunt shape's station "
+        "bias, the fold of its granular bow shock against the gas's along the body, and write "
+        "it into the table; the pooled scatter and shape fits stay as they are");
     int shape_seeds = pipeline::BowShapeOptions{}.seeds;
     calib
         ->add_option("--shape-seeds", shape_seeds,
@@ -222,6 +228,14 @@ int main(int argc, char** argv) {
       if (fit_shapes && bow_runs.empty())
         throw scene::InputError(
             "calibrate: --fit-shapes needs --bow-shock-runs (the blunt training runs)");
+      if (station_bias && (bow_runs.empty() || fit_shapes))
+        throw scene::InputError(
+            "calibrate: --station-bias needs --bow-shock-runs and no --fit-shapes (the bias "
+            "belongs to the law the runs ran at)");
+      if (station_bias) {
+        std::cout << pipeline::calibrate_station_biases(bow_runs, co.table_path).dump(2) << "\n";
+        return 0;
+      }
       if (!bow_runs.empty()) {
         pipeline::BowShapeOptions shape_options;
         shape_options.cache_dir = co.out_dir;

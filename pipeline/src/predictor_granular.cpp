@@ -11,10 +11,12 @@
 // and the clustered grids' error stalled where the shock ran through graded
 // cells (docs/meshgen.md, "The band on an attached shock").
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
 #include "json_fields.hpp"
+#include "pipeline/bow_station_bias.hpp"
 #include "pipeline/predictors.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/stage_cache.hpp"
@@ -94,14 +96,41 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
     // how far the calibrated gas is from the ideal gas's: a bow shock's band
     // also covers the table's out-of-sample error of its distances (NaN: none).
     if (p.kind == scene::ShockKind::detached) bow_rel = cx.calibration_bow_shock_relative_rms;
-    for (const auto& q : read_accepted_shock(p.shock_csv)) {
-      p.curve.push_back(q.point);
-      p.half_width.push_back(band_bow_half_width(q.half_width, q.distance, bow_rel));
+    auto rows = scene::read_shock_csv(p.shock_csv).rows;
+    // A bow shock of a shape whose fold the table measured is moved onto
+    // where the gas's stands, station by station, before the band is drawn.
+    const BowStationBias* bias =
+        p.kind == scene::ShockKind::detached ? cx.bow_station_bias : nullptr;
+    if (bias) {
+      const double mach = cx.scene.freestream.mach;
+      rows = unbiased_stations(rows, *bias, mach);
+      const double f = unbiased_standoff_factor(*bias, mach);
+      p.details["standoff_granular"] = json_number(p.standoff);
+      p.details["standoff_granular_ci"] = json_number(p.standoff_ci);
+      p.details["station_bias"] = {
+          {"shape", bias->shape},
+          {"model", bias->model},
+          {"coefficients", bias->coefficients},
+          {"standoff_factor", f},
+          {"left_out_standoff_rms", json_number(left_out_standoff_rms(*bias))}};
+      p.standoff *= f;
+      p.standoff_ci *= f;
+      p.fingerprint = fingerprint({p.fingerprint, fmt::format("station bias {} {}", bias->model,
+                                                              fmt::join(bias->coefficients, " "))});
     }
-    if (std::isfinite(bow_rel)) {
+    for (auto& q : rows) {
+      if (!q.accepted) continue;
+      q.ci = band_bow_half_width(std::isfinite(q.ci) ? q.ci : 0.0, q.distance, bow_rel);
+      p.curve.push_back(q.shock);
+      p.half_width.push_back(q.ci);
+    }
+    if (std::isfinite(bow_rel) || bias) {
+      // Every station, as shockfit laid them out (so the band can be set
+      // against any other shock of the body station by station), each
+      // accepted one's ci the band's half-width.
       p.fingerprint = fingerprint({p.fingerprint, fmt::format("bow band {:.17g}", bow_rel)});
       p.shock_csv = cx.out_dir + "/shock_band.csv";
-      write_shock_curve(p.shock_csv, p.curve, p.half_width);
+      scene::write_shock_csv(p.shock_csv, rows);
     }
   }
   p.details.update(

@@ -192,7 +192,14 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // bodies, a wedge beyond its maximum deflection, and a wedge just below it,
   // where the granular gas's shock detaches first.
   const double scatter = angle_deg ? table_angle_scatter_deg(t) : kNaN;
-  const double bow = shape ? shape->relative_rms : t.bow_shock ? t.bow_shock->relative_rms : kNaN;
+  // A shape that runs at the law may have its fold measured: its stations are
+  // corrected and its band takes the corrected stations' left-out scatter.
+  const BowStationBias* bias =
+      shape_name && !shape && t.bow_shock ? t.bow_shock->station_bias(*shape_name) : nullptr;
+  const double bow = shape         ? shape->relative_rms
+                     : bias        ? bias->relative_rms
+                     : t.bow_shock ? t.bow_shock->relative_rms
+                                   : kNaN;
   char buf[400];
   std::snprintf(buf, sizeof buf, "granular.restitution = %.6f from the calibration table %s%s",
                 s.granular.restitution, path.c_str(),
@@ -235,9 +242,24 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
         "Mach " + shortest(s.freestream.mach),
         "the Mach numbers of the blunt bodies the bow-shock band's scatter was measured on,",
         *bow_range, "", kUnmeasuredError);
-  const double cost =
+  bool outside_bias = false;
+  if (bias) {
+    note += "; its bow shock's fold taken out by the " + bias->shape + " shape's station bias (" +
+            bias->model + ", trained on " + std::to_string(bias->bodies.size()) + " bodies)";
+    const MachRange r{bias->mach_low, bias->mach_high};
+    outside_bias = !r.contains(s.freestream.mach);
+    if (outside_bias)
+      note += outside_warning(
+          "Mach " + shortest(s.freestream.mach),
+          "the Mach numbers the station bias was trained on,", r, "",
+          std::string("the bias is held at the nearest end and ") + kUnmeasuredError);
+  }
+  double cost =
       std::isfinite(bow) && stands_off ? t.cpu_seconds + t.bow_shock->cpu_seconds : t.cpu_seconds;
-  return {note, cost, scatter, bow, outside || outside_bow};
+  if (bias && std::isfinite(bias->cpu_seconds)) cost += bias->cpu_seconds;
+  AppliedCalibration out{note, cost, scatter, bow, outside || outside_bow || outside_bias};
+  if (bias) out.station_bias = *bias;
+  return out;
 }
 
 nlohmann::json run_prediction_at(const scene::Scene& s, double e, std::uint64_t seed,
@@ -322,10 +344,12 @@ nlohmann::json run_prediction(const scene::Scene& s, const std::string& out_dir,
 Prediction predict_shock(const scene::Scene& s, const std::string& predictor,
                          const std::string& out_dir, int np, bool force,
                          double calibration_angle_scatter_deg,
-                         double calibration_bow_shock_relative_rms) {
+                         double calibration_bow_shock_relative_rms,
+                         const BowStationBias* bow_station_bias) {
   const auto p = make_predictor(predictor);
   return p->predict({s, predictor_dir(out_dir, predictor), out_dir, np, force,
-                     calibration_angle_scatter_deg, calibration_bow_shock_relative_rms});
+                     calibration_angle_scatter_deg, calibration_bow_shock_relative_rms,
+                     bow_station_bias});
 }
 
 nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
@@ -356,7 +380,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
       o.force.count("granular") || o.force.count("shockfit") || o.force.count("all");
   const Prediction pred =
       predictor->predict({s, predictor_dir(o.out_dir, o.predictor), o.out_dir, o.np,
-                          force_prediction, calib.angle_scatter_deg, calib.bow_shock_relative_rms});
+                          force_prediction, calib.angle_scatter_deg, calib.bow_shock_relative_rms,
+                          calib.station_bias ? &*calib.station_bias : nullptr});
   check_interrupt("the prediction");
   done = 2;
   step("prediction (" + o.predictor + ")");

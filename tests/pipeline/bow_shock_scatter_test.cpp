@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "pipeline/bow_station_bias.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
@@ -244,9 +245,44 @@ TEST(BowShockScatter, GranularBowShockBandCoversTheScatter) {
     ++k;
   }
   EXPECT_EQ(k, wide.curve.size());
+  // The band keeps shockfit's station layout (every station, its surface
+  // point and normal), each accepted station's ci the band's half-width.
   const auto back = scene::read_shock_csv(wide.shock_csv).rows;
-  ASSERT_EQ(back.size(), wide.curve.size());
-  EXPECT_NEAR(back.back().ci, wide.half_width.back(), 1e-9);
+  ASSERT_EQ(back.size(), rows.size());
+  k = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(back[i].surface, rows[i].surface);
+    EXPECT_EQ(back[i].accepted, rows[i].accepted);
+    if (back[i].accepted) {
+      EXPECT_NEAR(back[i].ci, wide.half_width[k++], 1e-9);
+    }
+  }
+
+  // A shape's station bias moves every station along its normal by its fold
+  // and the standoff with it; the band then takes the bias's own scatter.
+  pipeline::BowStationBias bias;
+  bias.shape = "disc";
+  bias.model = "inclination";
+  bias.coefficients = {0.2, -0.4};
+  bias.relative_rms = 0.05;
+  bias.mach_low = 3;
+  bias.mach_high = 6;
+  const auto folded =
+      pipeline::predict_shock(s, "granular", dir.string(), 1, false, kNaN, 0.05, &bias);
+  EXPECT_NE(folded.fingerprint, p.fingerprint);
+  EXPECT_NEAR(folded.standoff, p.standoff / 1.2, 1e-12);
+  EXPECT_NEAR(folded.details.at("standoff_granular").get<double>(), p.standoff, 1e-12);
+  const auto moved = scene::read_shock_csv(folded.shock_csv).rows;
+  ASSERT_EQ(moved.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!rows[i].accepted) continue;
+    const double r =
+        bias.relative_error(s.freestream.mach, pipeline::inclination_deg(rows[i].normal));
+    EXPECT_NEAR(moved[i].distance, rows[i].distance / (1.0 + r), 1e-9);
+    EXPECT_NEAR(moved[i].shock.x, rows[i].surface.x + moved[i].distance * rows[i].normal.x, 1e-9);
+    EXPECT_NEAR(moved[i].ci, std::hypot(rows[i].ci / (1.0 + r), 1.96 * 0.05 * moved[i].distance),
+                1e-9);
+  }
 }
 
 // The scatter belongs to the table's e(M): a run with another restitution

@@ -17,6 +17,13 @@ struct StationErrors {
   std::string body;              // the scene's name
   double mach = scene::kNaN;     // its free-stream Mach number
   std::vector<double> relative;  // (d_granular - d_gas) / d_gas per station both accepted
+  // The same stations' body-normal inclinations (deg; bow_station_bias.hpp);
+  // NaN where the granular file has no normal columns.
+  std::vector<double> inclination_deg;
+  std::string shape;  // scene::bow_shape_class of the body ("" for none)
+  // The granular standoff's relative error against the gas's
+  // stagnation-line standoff (gas_standoff); NaN where not measured.
+  double standoff_relative = scene::kNaN;
   double rms = scene::kNaN;      // of `relative`
   double mean = scene::kNaN;
   double cpu_seconds = scene::kNaN;  // the run's predictor and the compared uniform grid
@@ -49,6 +56,10 @@ bool ran_at_table_restitution(const scene::Scene& ran, const CalibrationTable& t
 // case study's body at its Mach number (the case studies are predictions).
 StationErrors run_station_errors(const std::string& run_dir);
 
+// The granular standoff (shockfit's, in the summary at granular_summary)
+// against the run's gas stagnation-line standoff (gas_standoff), relative.
+double standoff_relative_error(const std::string& granular_summary, const BowTrainingRun& r);
+
 // Each body's RMS counts once.
 BowShockScatter pooled_scatter(const std::vector<StationErrors>& bodies);
 
@@ -61,5 +72,15 @@ struct BowShapeOptions;
 nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
                                     const std::string& table_path,
                                     const BowShapeOptions* shapes = nullptr);
+
+// `pipeline calibrate --bow-shock-runs RUNDIR... --station-bias`: fits each
+// shape's station bias (bow_station_bias.hpp) on the runs (every one at the
+// table's blunt law) and writes it into the table's bow block, leaving its
+// pooled scatter, shape fits and other shapes' biases as they are; a shape
+// whose fit does not beat its uncorrected stations out of sample gets none
+// (said in the returned report). InputError without a bow block recording
+// its law.
+nlohmann::json calibrate_station_biases(const std::vector<std::string>& run_dirs,
+                                        const std::string& table_path);
 
 }  // namespace pipeline

@@ -23,6 +23,8 @@
 
 namespace pipeline {
 
+struct BowStationBias;
+
 struct Prediction {
   std::string predictor;
   scene::ShockKind kind = scene::ShockKind::none;
@@ -60,6 +62,9 @@ struct PredictContext {
   // (RMS), when the restitution came from it and the body has no wedge
   // angle; NaN otherwise. Widens a detached shock's band.
   double calibration_bow_shock_relative_rms = scene::kNaN;
+  // The table's station bias for the body's shape (calibration.hpp): a
+  // detached shock's stations and standoff are corrected by it. nullptr: none.
+  const BowStationBias* bow_station_bias = nullptr;
 };
 
 class Predictor {

@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "pipeline/calibration.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
 
@@ -38,6 +39,9 @@ struct AppliedCalibration {
   // The scene's Mach number lies outside the table's training range: e(M)
   // is extrapolated, and the prediction's error there is unmeasured.
   bool outside_training_mach = false;
+  // The body's shape's station bias when it runs at the table's blunt law
+  // and the table measured one (its relative_rms is then bow_shock_relative_rms).
+  std::optional<BowStationBias> station_bias = std::nullopt;
 };
 // Applies the calibration table when the scene leaves granular.restitution
 // unset; bodies without a wedge angle take its Mach-only fit.
@@ -66,7 +70,8 @@ struct Prediction;
 Prediction predict_shock(const scene::Scene& s, const std::string& predictor,
                          const std::string& out_dir, int np, bool force = false,
                          double calibration_angle_scatter_deg = scene::kNaN,
-                         double calibration_bow_shock_relative_rms = scene::kNaN);
+                         double calibration_bow_shock_relative_rms = scene::kNaN,
+                         const BowStationBias* bow_station_bias = nullptr);
 
 // Path of the built-in calibration table (pipeline/calibration.yaml in the source tree).
 std::string builtin_calibration_path();

@@ -1,0 +1,210 @@
+#include "pipeline/bow_station_bias.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "scene/units.hpp"
+
+namespace pipeline {
+
+namespace {
+using scene::kNaN;
+
+// Inclinations are scaled by the quarter turn, so b1 is the fold from the
+// stagnation line to where the body runs parallel to the stream.
+constexpr double kQuarterTurnDeg = 90.0;
+// A richer model must lower the left-out RMS by more than this to be chosen.
+constexpr double kLooTie = 1e-12;
+
+std::vector<double> basis(const std::string& model, double mach, double inclination) {
+  const double s = inclination / kQuarterTurnDeg;
+  if (model == "inclination") return {1.0, s};
+  return {1.0, s, 1.0 / (mach * mach)};
+}
+
+double evaluate(const std::string& model, const std::vector<double>& c, double mach,
+                double inclination) {
+  const auto row = basis(model, mach, inclination);
+  double r = 0;
+  for (std::size_t j = 0; j < row.size(); ++j) r += c[j] * row[j];
+  return r;
+}
+
+// Each body's stations weigh 1 / n_i on their squared residuals, so a body
+// with many accepted stations counts once, like every other (a body's
+// stations move together: they share its run). `skip` is left out.
+std::optional<std::vector<double>> solve(const std::string& model,
+                                         const std::vector<StationErrors>& bodies,
+                                         std::size_t skip) {
+  const std::size_t p = station_bias_coefficients(model);
+  std::vector<std::vector<double>> rows;
+  std::vector<double> rhs;
+  std::set<double> machs;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (i == skip) continue;
+    const auto& b = bodies[i];
+    const double w = 1.0 / std::sqrt(static_cast<double>(b.relative.size()));
+    machs.insert(b.mach);
+    for (std::size_t k = 0; k < b.relative.size(); ++k) {
+      auto row = basis(model, b.mach, b.inclination_deg[k]);
+      for (auto& x : row) x *= w;
+      rows.push_back(row);
+      rhs.push_back(w * b.relative[k]);
+    }
+  }
+  // A Mach term needs two Mach numbers in what it is fitted on.
+  if (p == 3 && machs.size() < 2) return std::nullopt;
+  if (rows.size() < p) return std::nullopt;
+  Eigen::MatrixXd a(rows.size(), p);
+  Eigen::VectorXd y(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t j = 0; j < p; ++j)
+      a(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+    y(static_cast<Eigen::Index>(i)) = rhs[i];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < static_cast<Eigen::Index>(p)) return std::nullopt;
+  const Eigen::VectorXd c = qr.solve(y);
+  return std::vector<double>(c.data(), c.data() + c.size());
+}
+
+// One body's stations and standoff corrected by coefficients c.
+struct Corrected {
+  double mean = 0, rms = 0, standoff = kNaN;
+};
+Corrected corrected(const std::string& model, const std::vector<double>& c,
+                    const StationErrors& b) {
+  Corrected out;
+  double ss = 0;
+  for (std::size_t k = 0; k < b.relative.size(); ++k) {
+    const double e =
+        (1.0 + b.relative[k]) / (1.0 + evaluate(model, c, b.mach, b.inclination_deg[k])) - 1.0;
+    out.mean += e;
+    ss += e * e;
+  }
+  const double n = static_cast<double>(b.relative.size());
+  out.mean /= n;
+  out.rms = std::sqrt(ss / n);
+  out.standoff = (1.0 + b.standoff_relative) / (1.0 + evaluate(model, c, b.mach, 0.0)) - 1.0;
+  return out;
+}
+
+bool usable(const StationErrors& b) {
+  if (b.relative.empty() || b.inclination_deg.size() != b.relative.size()) return false;
+  if (!std::isfinite(b.standoff_relative) || !(b.mach > 0)) return false;
+  return std::all_of(b.inclination_deg.begin(), b.inclination_deg.end(),
+                     [](double x) { return std::isfinite(x); });
+}
+}  // namespace
+
+std::size_t station_bias_coefficients(const std::string& model) {
+  if (model == "inclination") return 2;
+  if (model == "inclination_mach") return 3;
+  return 0;
+}
+
+std::string station_bias_formula(const std::string& model) {
+  if (model == "inclination") return "r = b0 + b1*s, s = inclination/90deg";
+  return "r = b0 + b1*s + b2/M^2, s = inclination/90deg";
+}
+
+double inclination_deg(scene::Vec2 normal) {
+  if (!std::isfinite(normal.x) || !std::isfinite(normal.y)) return kNaN;
+  return std::atan2(std::abs(normal.y), -normal.x) / scene::kDeg;
+}
+
+double BowStationBias::relative_error(double mach, double inclination) const {
+  const double m = std::clamp(mach, mach_low, mach_high);
+  const double s = std::clamp(inclination, 0.0, max_inclination_deg);
+  return evaluate(model, coefficients, m, s);
+}
+
+std::optional<BowStationBias> fit_station_bias(const std::string& shape,
+                                               const std::vector<StationErrors>& bodies) {
+  if (bodies.size() < kMinBiasBodies) return std::nullopt;
+  if (!std::all_of(bodies.begin(), bodies.end(), usable)) return std::nullopt;
+  std::optional<BowStationBias> best;
+  for (const std::string model : {"inclination", "inclination_mach"}) {
+    const auto c = solve(model, bodies, bodies.size());
+    if (!c) continue;
+    BowStationBias b;
+    b.shape = shape;
+    b.model = model;
+    b.coefficients = *c;
+    b.max_inclination_deg = 0;
+    b.mach_low = b.mach_high = bodies.front().mach;
+    b.cpu_seconds = 0.0;
+    for (const auto& body : bodies) {
+      b.cpu_seconds += body.cpu_seconds;  // NaN when a run did not record it
+      b.mach_low = std::min(b.mach_low, body.mach);
+      b.mach_high = std::max(b.mach_high, body.mach);
+      for (const double x : body.inclination_deg)
+        b.max_inclination_deg = std::max(b.max_inclination_deg, x);
+    }
+    // Distances must stay positive wherever the model is held: its extremes
+    // lie at the corners of the (Mach, inclination) box.
+    bool positive = true;
+    for (const double m : {b.mach_low, b.mach_high})
+      for (const double s : {0.0, b.max_inclination_deg})
+        positive = positive && 1.0 + b.relative_error(m, s) > kMinBiasDenominator;
+    if (!positive) continue;
+    double ss = 0, ss0 = 0;
+    bool all_left_out = true;
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const auto& body = bodies[i];
+      const auto loo = solve(model, bodies, i);
+      if (!loo) {
+        all_left_out = false;
+        break;
+      }
+      const Corrected k = corrected(model, *loo, body);
+      BowStationBiasBody r;
+      r.body = body.body;
+      r.mach = body.mach;
+      r.stations = static_cast<int>(body.relative.size());
+      r.mean = body.mean;
+      r.rms = body.rms;
+      r.standoff = body.standoff_relative;
+      r.loo_mean = k.mean;
+      r.loo_rms = k.rms;
+      r.loo_standoff = k.standoff;
+      b.bodies.push_back(r);
+      ss += k.rms * k.rms;
+      ss0 += body.rms * body.rms;
+    }
+    if (!all_left_out) continue;
+    const double n = static_cast<double>(bodies.size());
+    b.relative_rms = std::sqrt(ss / n);
+    b.uncorrected_rms = std::sqrt(ss0 / n);
+    if (!best || b.relative_rms < best->relative_rms - kLooTie) best = b;
+  }
+  return best;
+}
+
+std::vector<scene::ShockCsvRow> unbiased_stations(const std::vector<scene::ShockCsvRow>& rows,
+                                                  const BowStationBias& b, double mach) {
+  std::vector<scene::ShockCsvRow> out = rows;
+  for (auto& r : out) {
+    const double inc = inclination_deg(r.normal);
+    if (!std::isfinite(inc) || !std::isfinite(r.distance) || !std::isfinite(r.surface.x)) continue;
+    const double f = 1.0 / (1.0 + b.relative_error(mach, inc));
+    r.distance *= f;
+    if (std::isfinite(r.ci)) r.ci *= f;
+    r.shock = r.surface + r.distance * r.normal;
+  }
+  return out;
+}
+
+double left_out_standoff_rms(const BowStationBias& b) {
+  double ss = 0;
+  for (const auto& r : b.bodies) ss += r.loo_standoff * r.loo_standoff;
+  return b.bodies.empty() ? kNaN : std::sqrt(ss / static_cast<double>(b.bodies.size()));
+}
+
+double unbiased_standoff_factor(const BowStationBias& b, double mach) {
+  return 1.0 / (1.0 + b.relative_error(mach, 0.0));
+}
+
+}  // namespace pipeline

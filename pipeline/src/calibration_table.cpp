@@ -102,6 +102,11 @@ BowShapeFit read_shape_fit(const std::string& path, const YAML::Node& n, const s
   return f;
 }
 
+// A key written only with a finite value (a NaN would not read back as a number).
+void write_finite(YAML::Emitter& e, const char* key, double v) {
+  if (std::isfinite(v)) e << YAML::Key << key << YAML::Value << v;
+}
+
 BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
                                  const std::string& key) {
   if (!n.IsMap() || !n["shape"] || !n["model"] || !n["coefficients"] || !n["relative_rms"])
@@ -155,9 +160,7 @@ BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
 }
 
 void write_station_bias(YAML::Emitter& e, const BowStationBias& b) {
-  const auto number = [&e](const char* key, double v) {
-    if (std::isfinite(v)) e << YAML::Key << key << YAML::Value << v;
-  };
+  const auto number = [&e](const char* key, double v) { write_finite(e, key, v); };
   e << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << b.shape << YAML::Key << "model"
     << YAML::Value << b.model << YAML::Key << "formula" << YAML::Value << YAML::DoubleQuoted
     << station_bias_formula(b.model) << YAML::Key << "coefficients" << YAML::Value << YAML::Flow
@@ -193,9 +196,7 @@ void write_fit(YAML::Emitter& e, const RestitutionFit& f) {
 }
 
 void write_shape_fit(YAML::Emitter& e, const BowShapeFit& f) {
-  const auto number = [&e](const char* key, double v) {
-    if (std::isfinite(v)) e << YAML::Key << key << YAML::Value << v;
-  };
+  const auto number = [&e](const char* key, double v) { write_finite(e, key, v); };
   e << YAML::BeginMap << YAML::Key << "shape" << YAML::Value << f.shape << YAML::Key << "formula"
     << YAML::Value << YAML::DoubleQuoted << "e = c0 + c1/M^2" << YAML::Key << "coefficients"
     << YAML::Value << YAML::Flow << f.coefficients << YAML::Key << "relative_rms" << YAML::Value

@@ -156,9 +156,9 @@ GridEstimate grid(const scene::Scene& s, const std::string& name, double level,
 double granular_predictor_cpu(const scene::Scene& s) {
   const granular::FlowSetup f = granular::make_flow_setup(s);
   const scene::GranularParams& g = s.granular;
-  const double averaging = g.target_from_band    ? kTypicalBandAveraging
-                           : precision_target(s) ? g.max_averaging
-                                                 : g.averaging;
+  const double averaging = g.target_from_band                              ? kTypicalBandAveraging
+                           : precision_target(s) || g.target_from_standoff ? g.max_averaging
+                                                                           : g.averaging;
   const double flow_throughs = g.warmup.value_or(kTypicalWarmupFlowThroughs) + averaging;
   const double cpu =
       kGranularPredictorCpuPerFlowThrough * flow_throughs *

@@ -6,6 +6,7 @@
 
 #include "json_fields.hpp"
 #include "pipeline/plot.hpp"
+#include "pipeline/precision_goal.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/rejudge.hpp"
 #include "pipeline/report.hpp"
@@ -79,6 +80,8 @@ nlohmann::json run_predict(scene::Scene s, const PredictOptions& o) {
   scene::make_dirs(o.out_dir);
   const AppliedCalibration calib =
       o.predictor == "granular" ? apply_calibration(s, o.calibration_path) : AppliedCalibration{};
+  // A bow shock's standoff is this command's product: it averages to its target.
+  if (o.predictor == "granular") default_to_standoff_target(s);
   const Prediction p = predict_shock(s, o.predictor, o.out_dir, o.np, false,
                                      calib.angle_scatter_deg, calib.bow_shock_relative_rms,
                                      calib.station_bias ? &*calib.station_bias : nullptr);

@@ -50,17 +50,28 @@ double shock_position_half_width(const scene::Scene& s, const shockfit::ShockRes
 
 namespace {
 
-// shockfit on the fields so far. in_degrees: an attached shock's precision as
-// its angle's half-width (deg), the quantity a band is widened by; else the
-// shock position's half-width (body lengths).
+// What a check measures the shock's precision in.
+enum class MeasureUnit {
+  position,  // the shock position's half-width (body lengths)
+  degrees,   // an attached shock's angle half-width, the quantity a band is widened by
+  relative,  // a bow shock's standoff half-width over its standoff
+};
+
+// shockfit on the fields so far, its precision in `unit`.
 granular::PrecisionMeasure measure_shock(const scene::Scene& s, const scene::Lattice& fields,
                                          const std::vector<scene::Lattice>& groups,
-                                         bool in_degrees) {
+                                         MeasureUnit unit) {
   granular::PrecisionMeasure m;
   shockfit::ShockResult r = shockfit::locate_shock(s, fields);
   shockfit::apply_group_interval(s, groups, r);
   const bool attached = r.shock == scene::ShockKind::attached;
-  if (in_degrees) {
+  if (unit == MeasureUnit::relative) {
+    if (r.shock == scene::ShockKind::detached && r.standoff > 0 && std::isfinite(r.standoff_ci)) {
+      m.half_width = r.standoff_ci / r.standoff;
+      m.value = r.standoff;
+      m.value_to_position = 1.0 / r.standoff;  // a move, relative to the standoff
+    }
+  } else if (unit == MeasureUnit::degrees) {
     if (attached && std::isfinite(r.shock_angle_ci_deg) && r.shock_angle_ci_deg > 0) {
       m.half_width = r.shock_angle_ci_deg;
       m.value = r.shock_angle_deg;
@@ -106,7 +117,24 @@ granular::PrecisionGoal band_goal(const scene::Scene& s, double angle_scatter_de
                 band_angle_half_width_deg(0.0, angle_scatter_deg), 100.0 * kBandWidening);
   goal.target_source = source;
   goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
-    return measure_shock(s, fields, groups, true);
+    return measure_shock(s, fields, groups, MeasureUnit::degrees);
+  };
+  return goal;
+}
+
+granular::PrecisionGoal standoff_goal(const scene::Scene& s) {
+  granular::PrecisionGoal goal;
+  goal.target = kStandoffTargetRelative;
+  goal.unit = "relative";
+  goal.min_flow_throughs = s.granular.averaging;
+  char source[120];
+  std::snprintf(source, sizeof source,
+                "standoff: its 95%% interval at most %g%% of the standoff (none before %g "
+                "flow-through times)",
+                100.0 * kStandoffTargetRelative, s.granular.averaging);
+  goal.target_source = source;
+  goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
+    return measure_shock(s, fields, groups, MeasureUnit::relative);
   };
   return goal;
 }
@@ -121,6 +149,7 @@ double band_target_deg(double angle_scatter_deg) {
 
 granular::PrecisionGoal precision_goal(const scene::Scene& s, double angle_scatter_deg) {
   if (s.granular.target_from_band) return band_goal(s, angle_scatter_deg);
+  if (s.granular.target_from_standoff) return standoff_goal(s);
   granular::PrecisionGoal goal;
   const std::optional<double> target = precision_target(s);
   if (!target) return goal;
@@ -130,7 +159,7 @@ granular::PrecisionGoal precision_goal(const scene::Scene& s, double angle_scatt
                 kTargetFineCells);
   goal.target_source = s.granular.target_from_mesh ? mesh_source : "granular.target_half_width";
   goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
-    return measure_shock(s, fields, groups, false);
+    return measure_shock(s, fields, groups, MeasureUnit::position);
   };
   return goal;
 }
@@ -141,6 +170,14 @@ bool default_to_band_target(scene::Scene& s, double angle_scatter_deg) {
       !scene::attached_shock_beta(s))
     return false;
   g.target_from_band = true;
+  return true;
+}
+
+bool default_to_standoff_target(scene::Scene& s) {
+  scene::GranularParams& g = s.granular;
+  if (!s.body || g.averaging_given || g.asks_precision() || scene::attached_shock_beta(s))
+    return false;
+  g.target_from_standoff = true;
   return true;
 }
 

@@ -25,7 +25,7 @@ constexpr double kMaxGravity = 1e3;
 // Elastic impacts below this many thermal speeds: beyond the stream's own
 // speed at the Mach ceiling every impact would be elastic, the gas ideal.
 constexpr double kMaxImpactSpeed = 100.0;
-// `target_half_width`: a half-width in body lengths, `mesh` or `band`.
+// `target_half_width`: a half-width in body lengths, `mesh`, `band` or `standoff`.
 void parse_precision_target(Section& s, GranularParams& p) {
   const std::optional<std::string> text = s.opt_string("target_half_width");
   if (!text) return;
@@ -37,12 +37,16 @@ void parse_precision_target(Section& s, GranularParams& p) {
     p.target_from_band = true;
     return;
   }
+  if (*text == "standoff") {
+    p.target_from_standoff = true;
+    return;
+  }
   char* end = nullptr;
   const double v = std::strtod(text->c_str(), &end);
   const Range r{0.0, kMaxTargetHalfWidth, true, false};
   if (text->empty() || end != text->c_str() + text->size() || !r.contains(v))
     s.fail("target_half_width", "expected a half-width in body lengths (" + r.describe() +
-                                    ") or 'mesh' or 'band', got '" + *text + "'");
+                                    ") or 'mesh', 'band' or 'standoff', got '" + *text + "'");
   p.target_half_width = v;
 }
 
@@ -111,6 +115,8 @@ void emit_granular(YAML::Emitter& e, const GranularParams& p) {
     emit_kv(e, "target_half_width", "mesh");
   else if (p.target_from_band)
     emit_kv(e, "target_half_width", "band");
+  else if (p.target_from_standoff)
+    emit_kv(e, "target_half_width", "standoff");
   else
     emit_opt(e, "target_half_width", p.target_half_width);
   emit_opt(e, "cpu_budget", p.cpu_budget);

@@ -115,3 +115,29 @@ TEST(PrecisionGoal, ARunKeepsTwoReplicasOnlyForABowShockWhoseBandIsTheTables) {
   EXPECT_FALSE(pipeline::default_to_band_replicas(attached, kBowRelative));
   EXPECT_EQ(attached.granular.replicas, scene::kDefaultReplicas);
 }
+
+TEST(PrecisionGoal, PredictAveragesABowShockToItsStandoffTarget) {
+  const char* disc = "name: c\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n";
+  scene::Scene open = scene::parse_scene(disc);
+  EXPECT_TRUE(pipeline::default_to_standoff_target(open));
+  EXPECT_TRUE(open.granular.target_from_standoff);
+  EXPECT_TRUE(open.granular.asks_precision());
+  // The resolved scene keeps the choice, so a rerun averages the same way.
+  EXPECT_TRUE(scene::parse_scene(scene::to_yaml(open)).granular.target_from_standoff);
+  const granular::PrecisionGoal g = pipeline::precision_goal(open);
+  ASSERT_TRUE(g.active());
+  EXPECT_EQ(g.unit, "relative");
+  EXPECT_DOUBLE_EQ(g.target, pipeline::kStandoffTargetRelative);
+  // Never shorter than the averaging a bow shock had without it.
+  EXPECT_DOUBLE_EQ(g.min_flow_throughs, open.granular.averaging);
+  // A scene that sets its averaging or a target, and an attached shock, keep theirs.
+  for (const char* set : {"granular: {averaging: 6}", "granular: {target_half_width: 0.01}"}) {
+    scene::Scene s = scene::parse_scene(std::string(disc) + set + "\n");
+    EXPECT_FALSE(pipeline::default_to_standoff_target(s)) << set;
+    EXPECT_FALSE(s.granular.target_from_standoff) << set;
+  }
+  scene::Scene attached = wedge("{}");
+  EXPECT_FALSE(pipeline::default_to_standoff_target(attached));
+  EXPECT_TRUE(scene::parse_scene(std::string(disc) + "granular: {target_half_width: standoff}\n")
+                  .granular.target_from_standoff);
+}

@@ -93,6 +93,31 @@ TEST(Precision, ABandTargetStopsNoEarlierThanItsMinimum) {
   EXPECT_THROW(pipeline::run_prediction(s, fresh("band_none"), 2, true), scene::InputError);
 }
 
+TEST(Precision, AStandoffTargetIsRelativeToTheStandoff) {
+  // The small disc's bow shock, one to three flow-through times: whatever
+  // stops it, every check measures the standoff's half-width over the
+  // standoff, the final one the reported interval's.
+  scene::Scene s = scene::load_scene(std::string(SOURCE_DIR) + "/tests/data/disc_small.yaml");
+  s.granular.target_from_standoff = true;
+  s.granular.averaging = 1.0;
+  s.granular.max_averaging = 3.0;
+  s.granular.replicas = 2;
+  const nlohmann::json r = pipeline::run_prediction(s, fresh("standoff"), 2, true);
+  const nlohmann::json& g = r["granular"];
+  ASSERT_EQ(r.value("shock", ""), "detached") << r.dump(1);
+  const nlohmann::json& p = g["precision"];
+  EXPECT_EQ(p["target_unit"], "relative");
+  EXPECT_DOUBLE_EQ(p["target_half_width"].get<double>(), pipeline::kStandoffTargetRelative);
+  EXPECT_EQ(p["quantity"], "standoff");
+  EXPECT_NEAR(p["half_width"].get<double>(),
+              r["standoff_ci"].get<double>() / r["standoff"].get<double>(), 1e-12);
+  const std::string stop = g["stopped_by"];
+  EXPECT_TRUE(stop == "precision" || stop == "averaging") << stop;
+  if (stop == "precision") {
+    EXPECT_LE(p["half_width"].get<double>(), pipeline::kStandoffTargetRelative);
+  }
+}
+
 TEST(Precision, ImpossibleTargetStopsByBudget) {
   scene::Scene s = scene::load_scene(kScene);
   s.granular.target_half_width = kImpossibleTarget;

@@ -48,6 +48,14 @@ inline constexpr double kBandMinAveraging = 4.0;
 // scatter alone (band_angle_half_width_deg with no run interval), deg.
 double band_target_deg(double angle_scatter_deg);
 
+// `target_half_width: standoff`: a bow shock averages until its standoff's
+// 95% interval is at most this fraction of the standoff (two checks agreeing,
+// the standoff moved by no more than that between them), or max_averaging.
+// It is the standoff precision a bow-shock prediction is judged by; a fixed
+// averaging gave +-1.4-5.2% on unseen discs at the table's e (docs/shockfit.md,
+// "The standoff target").
+inline constexpr double kStandoffTargetRelative = 0.03;
+
 // The goal handed to the granular stage: inactive (fixed averaging) when the
 // scene sets no target; else the target and a measure that runs shockfit.
 // A band target needs the table's angle scatter (deg; InputError naming the
@@ -68,6 +76,12 @@ bool default_to_band_target(scene::Scene& s, double angle_scatter_deg);
 // of kBowShockReplicas: that band is +-1.96 x bow_relative (about +-30%)
 // wide, and the run's own +-3.6% adds nothing to it. True if it did.
 bool default_to_band_replicas(scene::Scene& s, double bow_relative);
+
+// Where a scene leaves the averaging open and its gas shock is detached,
+// `pipeline predict` (whose product is the standoff, not a band) averages to
+// `standoff`, no shorter than the scene's averaging: sets
+// target_from_standoff, true if it did.
+bool default_to_standoff_target(scene::Scene& s);
 
 // Both of the above: what a run that builds the band averages, in one place
 // for the run and its cost estimate.

@@ -81,9 +81,12 @@ struct GranularParams {
   // `target_half_width: band`: an attached shock's angle interval small
   // against the calibrated band it widens (pipeline/precision_goal.hpp).
   bool target_from_band = false;
-  // Whether the scene asks for precision on demand (any of the three forms).
+  // `target_half_width: standoff`: a bow shock's standoff interval at most a
+  // fixed fraction of the standoff (pipeline/precision_goal.hpp).
+  bool target_from_standoff = false;
+  // Whether the scene asks for precision on demand (any of the four forms).
   [[nodiscard]] bool asks_precision() const {
-    return target_half_width || target_from_mesh || target_from_band;
+    return target_half_width || target_from_mesh || target_from_band || target_from_standoff;
   }
   std::optional<double> cpu_budget;    // CPU seconds of the granular stage
   double max_averaging = 16.0;         // flow-through times, with a target

@@ -60,7 +60,7 @@ nlohmann::json fit_station_biases(const std::vector<StationErrors>& bodies, BowS
     const auto fit = fit_station_bias(shape, members);
     if (!fit) {
       report.push_back({{"shape", shape},
-                        {"bodies", members.size()},
+                        {"runs", members.size()},
                         {"used", false},
                         {"note", "no fit: fewer than " + std::to_string(kMinBiasBodies) +
                                      " bodies, a body without station normals or standoff, "

@@ -91,6 +91,43 @@ Corrected corrected(const std::string& model, const std::vector<double>& c,
   return out;
 }
 
+// Several runs of one body (same name and Mach number: other seeds) are one
+// body: their stations pooled, their standoff errors averaged, so that
+// leaving the body out leaves all of them out.
+std::vector<StationErrors> pooled_by_body(const std::vector<StationErrors>& runs,
+                                          std::vector<int>& run_counts) {
+  std::vector<StationErrors> out;
+  run_counts.clear();
+  for (const auto& r : runs) {
+    const auto same = std::find_if(out.begin(), out.end(), [&](const StationErrors& b) {
+      return b.body == r.body && b.mach == r.mach;
+    });
+    if (same == out.end()) {
+      out.push_back(r);
+      run_counts.push_back(1);
+      continue;
+    }
+    int& n = run_counts[static_cast<std::size_t>(same - out.begin())];
+    same->relative.insert(same->relative.end(), r.relative.begin(), r.relative.end());
+    same->inclination_deg.insert(same->inclination_deg.end(), r.inclination_deg.begin(),
+                                 r.inclination_deg.end());
+    same->standoff_relative = (same->standoff_relative * n + r.standoff_relative) / (n + 1);
+    same->cpu_seconds += r.cpu_seconds;
+    ++n;
+  }
+  for (auto& b : out) {
+    double ss = 0, sum = 0;
+    for (const double x : b.relative) {
+      ss += x * x;
+      sum += x;
+    }
+    const double n = static_cast<double>(b.relative.size());
+    b.rms = std::sqrt(ss / n);
+    b.mean = sum / n;
+  }
+  return out;
+}
+
 bool usable(const StationErrors& b) {
   if (b.relative.empty() || b.inclination_deg.size() != b.relative.size()) return false;
   if (!std::isfinite(b.standoff_relative) || !(b.mach > 0)) return false;
@@ -122,7 +159,9 @@ double BowStationBias::relative_error(double mach, double inclination) const {
 }
 
 std::optional<BowStationBias> fit_station_bias(const std::string& shape,
-                                               const std::vector<StationErrors>& bodies) {
+                                               const std::vector<StationErrors>& runs) {
+  std::vector<int> run_counts;
+  const std::vector<StationErrors> bodies = pooled_by_body(runs, run_counts);
   if (bodies.size() < kMinBiasBodies) return std::nullopt;
   if (!std::all_of(bodies.begin(), bodies.end(), usable)) return std::nullopt;
   std::optional<BowStationBias> best;
@@ -164,6 +203,7 @@ std::optional<BowStationBias> fit_station_bias(const std::string& shape,
       r.body = body.body;
       r.mach = body.mach;
       r.stations = static_cast<int>(body.relative.size());
+      r.runs = run_counts[i];
       r.mean = body.mean;
       r.rms = body.rms;
       r.standoff = body.standoff_relative;

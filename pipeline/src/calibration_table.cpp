@@ -147,6 +147,7 @@ BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
       r.body = q["body"].as<std::string>();
       r.mach = optional_number(q, "mach", kNaN);
       r.stations = q["stations"] ? q["stations"].as<int>() : 0;
+      r.runs = q["runs"] ? q["runs"].as<int>() : 1;
       r.mean = optional_number(q, "mean", kNaN);
       r.rms = optional_number(q, "rms", kNaN);
       r.standoff = optional_number(q, "standoff", kNaN);
@@ -175,7 +176,8 @@ void write_station_bias(YAML::Emitter& e, const BowStationBias& b) {
   for (const auto& r : b.bodies) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "body" << YAML::Value << r.body;
     number("mach", r.mach);
-    e << YAML::Key << "stations" << YAML::Value << r.stations;
+    e << YAML::Key << "stations" << YAML::Value << r.stations << YAML::Key << "runs" << YAML::Value
+      << r.runs;
     number("mean", r.mean);
     number("rms", r.rms);
     number("standoff", r.standoff);

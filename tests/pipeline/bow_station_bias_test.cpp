@@ -58,7 +58,7 @@ pipeline::BowStationBias disc_bias() {
   b.max_inclination_deg = 87.5;
   b.mach_low = 3;
   b.mach_high = 6;
-  b.bodies.push_back({"disc_M3", 3, 33, 0.05, 0.11, 0.3, -0.1, 0.1, -0.05});
+  b.bodies.push_back({"disc_M3", 3, 33, 1, 0.05, 0.11, 0.3, -0.1, 0.1, -0.05});
   return b;
 }
 }  // namespace
@@ -89,6 +89,25 @@ TEST(StationBias, AFoldThatMovesWithMachIsFoundAndLeftOutBodiesAreCorrected) {
   EXPECT_DOUBLE_EQ(fit->mach_low, 3.0);
   EXPECT_DOUBLE_EQ(fit->mach_high, 6.0);
   EXPECT_DOUBLE_EQ(fit->max_inclination_deg, 85.0);
+}
+
+TEST(StationBias, RunsOfOneBodyArePooledAsThatBody) {
+  // Two seeds of body b, one high and one low by the same amount: one body
+  // whose standoff error is their mean; three bodies, so the fit exists, and
+  // two seeds of a and b alone are still two bodies, so it does not.
+  const auto a = folded_body("a", 3, 0.1, -0.4, 1.5);
+  auto b_high = folded_body("b", 5, 0.12, -0.4, 1.5);
+  auto b_low = folded_body("b", 5, 0.08, -0.4, 1.5);
+  const auto c = folded_body("c", 6, 0.1, -0.4, 1.5);
+  const auto fit = pipeline::fit_station_bias("disc", {a, b_high, c, b_low});
+  ASSERT_TRUE(fit.has_value());
+  ASSERT_EQ(fit->bodies.size(), 3u);
+  EXPECT_EQ(fit->bodies[1].body, "b");
+  EXPECT_EQ(fit->bodies[1].runs, 2);
+  EXPECT_EQ(fit->bodies[1].stations, 36);
+  EXPECT_NEAR(fit->bodies[1].standoff, 0.1 + 1.5 / 25.0, 1e-12);
+  EXPECT_NEAR(fit->coefficients[0], 0.1, 1e-9);  // the seeds' spread averages out
+  EXPECT_FALSE(pipeline::fit_station_bias("disc", {a, b_high, b_low}).has_value());
 }
 
 TEST(StationBias, AFoldThatDoesNotMoveWithMachKeepsTheSimplerModel) {

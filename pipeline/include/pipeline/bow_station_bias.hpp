@@ -24,7 +24,8 @@ std::string station_bias_formula(const std::string& model);
 double inclination_deg(scene::Vec2 normal);
 
 // Each model fitted to the bodies' stations (each body's stations weighing
-// as much in all as another body's), judged by leaving each body out; the
+// as much in all as another body's; several runs of one body, same name and
+// Mach number, pooled as that body), judged by leaving each body out; the
 // one with the smaller left-out RMS (the simpler on a tie). nullopt with
 // fewer than kMinBiasBodies bodies, a body without inclinations or standoff,
 // or where no model's corrected distances stay positive (1 + r above
@@ -33,7 +34,7 @@ double inclination_deg(scene::Vec2 normal);
 inline constexpr std::size_t kMinBiasBodies = 3;
 inline constexpr double kMinBiasDenominator = 0.5;
 std::optional<BowStationBias> fit_station_bias(const std::string& shape,
-                                               const std::vector<StationErrors>& bodies);
+                                               const std::vector<StationErrors>& runs);
 
 // The stations with the bias taken out: each distance and its interval
 // divided by 1 + r(mach, inclination), the shock point moved along its

@@ -94,6 +94,7 @@ struct BowStationBiasBody {
   std::string body;
   double mach = scene::kNaN;
   int stations = 0;
+  int runs = 1;  // granular runs (seeds) pooled for the body
   // Uncorrected: stations' relative mean and RMS, the standoff's relative
   // error against the gas's stagnation-line standoff.
   double mean = scene::kNaN, rms = scene::kNaN, standoff = scene::kNaN;

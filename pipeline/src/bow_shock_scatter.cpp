@@ -48,6 +48,20 @@ void check_table_restitution(const std::string& run_dir, const CalibrationTable&
                             "); rerun the body with that table and no restitution of its own");
 }
 
+void require_run_dir(const std::string& dir) {
+  if (!std::filesystem::is_directory(dir))
+    throw scene::InputError(
+        dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
+}
+
+// A run's stations against its gas shock, refused unless it ran at the
+// table's blunt law (what the pooled scatter and a station bias belong to).
+StationErrors law_station_errors(const std::string& dir, const CalibrationTable& t,
+                                 const std::string& table_path) {
+  check_table_restitution(dir, t, table_path);
+  return run_station_errors(dir);
+}
+
 // Per shape class without its own e fit, the fold of its bodies' stations
 // (bow_station_bias.hpp); kept where it beats the uncorrected stations out of
 // sample. A shape with an own e runs its bodies elsewhere than at the law.
@@ -98,7 +112,6 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
   const auto g = scene::read_shock_csv(granular_csv).rows;
   const auto c = scene::read_shock_csv(gas_csv).rows;
   StationErrors out;
-  double ss = 0, sum = 0;
   for (std::size_t i = 0; i < std::min(g.size(), c.size()); ++i) {
     if (!same_point(g[i].surface, c[i].surface))
       throw scene::InputError(granular_csv + " and " + gas_csv + ": station " + std::to_string(i) +
@@ -108,17 +121,24 @@ StationErrors station_errors(const std::string& granular_csv, const std::string&
     const double r = (g[i].distance - c[i].distance) / c[i].distance;
     out.relative.push_back(r);
     out.inclination_deg.push_back(inclination_deg(g[i].normal));
-    ss += r * r;
-    sum += r;
   }
   if (out.relative.size() < kMinStations)
     throw scene::InputError(
         granular_csv + " and " + gas_csv + ": " + std::to_string(out.relative.size()) +
         " stations accepted in both (at least " + std::to_string(kMinStations) + " needed)");
-  const double n = static_cast<double>(out.relative.size());
-  out.rms = std::sqrt(ss / n);
-  out.mean = sum / n;
+  set_mean_and_rms(out);
   return out;
+}
+
+void set_mean_and_rms(StationErrors& e) {
+  double ss = 0, sum = 0;
+  for (const double r : e.relative) {
+    ss += r * r;
+    sum += r;
+  }
+  const double n = static_cast<double>(e.relative.size());
+  e.rms = std::sqrt(ss / n);
+  e.mean = sum / n;
 }
 
 BowTrainingRun bow_training_run(const std::string& run_dir) {
@@ -195,9 +215,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
   std::vector<BowTrainingRun> runs;
   nlohmann::json per_body = nlohmann::json::array();
   for (const auto& dir : run_dirs) {
-    if (!std::filesystem::is_directory(dir))
-      throw scene::InputError(
-          dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
+    require_run_dir(dir);
     // A run made at its shape's own e (a table that has one) still holds the
     // gas shock; with the sweeps' cache its body is rerun at the wedge e(M)
     // when needed.
@@ -205,8 +223,7 @@ nlohmann::json calibrate_bow_shocks(const std::vector<std::string>& run_dirs,
       runs.push_back(bow_training_run(dir));
       bodies.push_back(wedge_station_errors(runs.back(), table, *shapes));
     } else {
-      check_table_restitution(dir, table, path);
-      bodies.push_back(run_station_errors(dir));
+      bodies.push_back(law_station_errors(dir, table, path));
     }
     const auto& b = bodies.back();
     per_body.push_back({{"body", b.body},
@@ -264,11 +281,8 @@ nlohmann::json calibrate_station_biases(const std::vector<std::string>& run_dirs
                             "for a station bias to belong to (run --bow-shock-runs first)");
   std::vector<StationErrors> bodies;
   for (const auto& dir : run_dirs) {
-    if (!std::filesystem::is_directory(dir))
-      throw scene::InputError(
-          dir + ": --bow-shock-runs: no such directory (a finished `pipeline run` expected)");
-    check_table_restitution(dir, table, path);
-    bodies.push_back(run_station_errors(dir));
+    require_run_dir(dir);
+    bodies.push_back(law_station_errors(dir, table, path));
   }
   BowShockScatter w = *table.bow_shock;
   // A shape these runs hold is refitted from them alone.

@@ -55,7 +55,7 @@ std::optional<std::vector<double>> solve(const std::string& model,
     }
   }
   // A Mach term needs two Mach numbers in what it is fitted on.
-  if (p == 3 && machs.size() < 2) return std::nullopt;
+  if (model == "inclination_mach" && machs.size() < 2) return std::nullopt;
   if (rows.size() < p) return std::nullopt;
   Eigen::MatrixXd a(rows.size(), p);
   Eigen::VectorXd y(rows.size());
@@ -115,16 +115,7 @@ std::vector<StationErrors> pooled_by_body(const std::vector<StationErrors>& runs
     same->cpu_seconds += r.cpu_seconds;
     ++n;
   }
-  for (auto& b : out) {
-    double ss = 0, sum = 0;
-    for (const double x : b.relative) {
-      ss += x * x;
-      sum += x;
-    }
-    const double n = static_cast<double>(b.relative.size());
-    b.rms = std::sqrt(ss / n);
-    b.mean = sum / n;
-  }
+  for (auto& b : out) set_mean_and_rms(b);
   return out;
 }
 

@@ -29,6 +29,9 @@ struct StationErrors {
   double cpu_seconds = scene::kNaN;  // the run's predictor and the compared uniform grid
 };
 
+// `rms` and `mean` of e.relative (which must not be empty).
+void set_mean_and_rms(StationErrors& e);
+
 // Stations are matched by index; both files must come from the same body's
 // station layout (surface points equal to kSameStation), else InputError.
 // Fewer than kMinStations common stations: InputError naming the files.

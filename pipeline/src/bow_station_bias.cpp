@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -17,11 +18,36 @@ using scene::kNaN;
 constexpr double kQuarterTurnDeg = 90.0;
 // A richer model must lower the left-out RMS by more than this to be chosen.
 constexpr double kLooTie = 1e-12;
+// Where a model's distances are checked to stay positive: enough points
+// across the inclinations to catch a quadratic's turning point.
+constexpr int kPositivityChecks = 16;
+
+// The candidate models, simplest first. The quadratic lets the fold flatten
+// near the stagnation line, where the training discs' stations do.
+struct Model {
+  const char* name;
+  const char* formula;
+  std::size_t coefficients;
+  bool mach_term;
+};
+constexpr std::array<Model, 3> kModels{{
+    {"inclination", "r = b0 + b1*s, s = inclination/90deg", 2, false},
+    {"inclination_mach", "r = b0 + b1*s + b2/M^2, s = inclination/90deg", 3, true},
+    {"inclination2_mach", "r = b0 + b1*s + b2*s^2 + b3/M^2, s = inclination/90deg", 4, true},
+}};
+
+const Model* find_model(const std::string& name) {
+  for (const auto& m : kModels)
+    if (name == m.name) return &m;
+  return nullptr;
+}
 
 std::vector<double> basis(const std::string& model, double mach, double inclination) {
   const double s = inclination / kQuarterTurnDeg;
+  const double mach_term = 1.0 / (mach * mach);
   if (model == "inclination") return {1.0, s};
-  return {1.0, s, 1.0 / (mach * mach)};
+  if (model == "inclination_mach") return {1.0, s, mach_term};
+  return {1.0, s, s * s, mach_term};
 }
 
 double evaluate(const std::string& model, const std::vector<double>& c, double mach,
@@ -55,7 +81,7 @@ std::optional<std::vector<double>> solve(const std::string& model,
     }
   }
   // A Mach term needs two Mach numbers in what it is fitted on.
-  if (model == "inclination_mach" && machs.size() < 2) return std::nullopt;
+  if (find_model(model)->mach_term && machs.size() < 2) return std::nullopt;
   if (rows.size() < p) return std::nullopt;
   Eigen::MatrixXd a(rows.size(), p);
   Eigen::VectorXd y(rows.size());
@@ -128,14 +154,19 @@ bool usable(const StationErrors& b) {
 }  // namespace
 
 std::size_t station_bias_coefficients(const std::string& model) {
-  if (model == "inclination") return 2;
-  if (model == "inclination_mach") return 3;
-  return 0;
+  const Model* m = find_model(model);
+  return m ? m->coefficients : 0;
 }
 
 std::string station_bias_formula(const std::string& model) {
-  if (model == "inclination") return "r = b0 + b1*s, s = inclination/90deg";
-  return "r = b0 + b1*s + b2/M^2, s = inclination/90deg";
+  const Model* m = find_model(model);
+  return m ? m->formula : "";
+}
+
+std::string station_bias_models() {
+  std::string out;
+  for (const auto& m : kModels) out += (out.empty() ? "" : ", ") + std::string(m.name);
+  return out;
 }
 
 double inclination_deg(scene::Vec2 normal) {
@@ -156,7 +187,8 @@ std::optional<BowStationBias> fit_station_bias(const std::string& shape,
   if (bodies.size() < kMinBiasBodies) return std::nullopt;
   if (!std::all_of(bodies.begin(), bodies.end(), usable)) return std::nullopt;
   std::optional<BowStationBias> best;
-  for (const std::string model : {"inclination", "inclination_mach"}) {
+  for (const auto& spec : kModels) {
+    const std::string model = spec.name;
     const auto c = solve(model, bodies, bodies.size());
     if (!c) continue;
     BowStationBias b;
@@ -173,12 +205,14 @@ std::optional<BowStationBias> fit_station_bias(const std::string& shape,
       for (const double x : body.inclination_deg)
         b.max_inclination_deg = std::max(b.max_inclination_deg, x);
     }
-    // Distances must stay positive wherever the model is held: its extremes
-    // lie at the corners of the (Mach, inclination) box.
+    // Distances must stay positive wherever the model is held: monotone in
+    // 1/M^2, so the Mach ends; across the inclinations, checked point by point.
     bool positive = true;
     for (const double m : {b.mach_low, b.mach_high})
-      for (const double s : {0.0, b.max_inclination_deg})
-        positive = positive && 1.0 + b.relative_error(m, s) > kMinBiasDenominator;
+      for (int k = 0; k <= kPositivityChecks; ++k)
+        positive =
+            positive && 1.0 + b.relative_error(m, b.max_inclination_deg * k / kPositivityChecks) >
+                            kMinBiasDenominator;
     if (!positive) continue;
     double ss = 0, ss0 = 0;
     bool all_left_out = true;

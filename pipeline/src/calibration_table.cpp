@@ -117,7 +117,7 @@ BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
   const std::size_t want = station_bias_coefficients(b.model);
   if (want == 0)
     bad(path, n["model"], key + ".model",
-        "unknown model '" + b.model + "' (inclination or inclination_mach)");
+        "unknown model '" + b.model + "' (" + station_bias_models() + ")");
   const auto c = n["coefficients"];
   if (!c.IsSequence() || c.size() != want)
     bad(path, c, key + ".coefficients",

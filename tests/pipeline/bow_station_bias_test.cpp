@@ -26,9 +26,9 @@ fs::path fresh(const std::string& name) {
 }
 
 // A body whose stations (inclinations 0-85 deg) and standoff miss the gas's
-// by exactly r = b0 + b1 s + b2 / M^2.
+// by exactly r = b0 + b1 s + b2 / M^2 + q s^2.
 pipeline::StationErrors folded_body(const std::string& name, double mach, double b0, double b1,
-                                    double b2) {
+                                    double b2, double q = 0) {
   pipeline::StationErrors e;
   e.body = name;
   e.mach = mach;
@@ -36,7 +36,8 @@ pipeline::StationErrors folded_body(const std::string& name, double mach, double
   double ss = 0, sum = 0;
   for (int k = 0; k <= 17; ++k) {
     const double inc = 5.0 * k;
-    const double r = b0 + b1 * inc / 90.0 + b2 / (mach * mach);
+    const double s = inc / 90.0;
+    const double r = b0 + b1 * s + b2 / (mach * mach) + q * s * s;
     e.inclination_deg.push_back(inc);
     e.relative.push_back(r);
     ss += r * r;
@@ -89,6 +90,26 @@ TEST(StationBias, AFoldThatMovesWithMachIsFoundAndLeftOutBodiesAreCorrected) {
   EXPECT_DOUBLE_EQ(fit->mach_low, 3.0);
   EXPECT_DOUBLE_EQ(fit->mach_high, 6.0);
   EXPECT_DOUBLE_EQ(fit->max_inclination_deg, 85.0);
+}
+
+TEST(StationBias, AFoldThatFlattensAtTheNoseTakesTheQuadraticModel) {
+  // Flat near the stagnation line, falling toward the wings: a straight
+  // line in s would stand the nose wrong; the quadratic is exact there.
+  const std::vector<pipeline::StationErrors> bodies{
+      folded_body("a", 3, 0.1, 0.0, 1.5, -0.3), folded_body("b", 4, 0.1, 0.0, 1.5, -0.3),
+      folded_body("c", 5, 0.1, 0.0, 1.5, -0.3), folded_body("d", 6, 0.1, 0.0, 1.5, -0.3)};
+  const auto fit = pipeline::fit_station_bias("disc", bodies);
+  ASSERT_TRUE(fit.has_value());
+  EXPECT_EQ(fit->model, "inclination2_mach");
+  ASSERT_EQ(fit->coefficients.size(), 4u);
+  EXPECT_NEAR(fit->coefficients[0], 0.1, 1e-9);
+  EXPECT_NEAR(fit->coefficients[1], 0.0, 1e-9);
+  EXPECT_NEAR(fit->coefficients[2], -0.3, 1e-9);
+  EXPECT_NEAR(fit->coefficients[3], 1.5, 1e-9);
+  EXPECT_NEAR(fit->relative_rms, 0.0, 1e-9);
+  for (const auto& b : fit->bodies) EXPECT_NEAR(b.loo_standoff, 0.0, 1e-9);
+  EXPECT_EQ(pipeline::station_bias_coefficients("inclination2_mach"), 4u);
+  EXPECT_EQ(pipeline::station_bias_coefficients("quartic"), 0u);
 }
 
 TEST(StationBias, RunsOfOneBodyArePooledAsThatBody) {

@@ -15,9 +15,11 @@
 namespace pipeline {
 
 // Coefficients of a model ("inclination": b0, b1; "inclination_mach": b0,
-// b1, b2); 0 for an unknown name. And its formula, for the table.
+// b1, b2; "inclination2_mach": b0, b1, b2, b3); 0 for an unknown name. Its
+// formula, for the table ("" when unknown), and the models' names, for errors.
 std::size_t station_bias_coefficients(const std::string& model);
 std::string station_bias_formula(const std::string& model);
+std::string station_bias_models();
 
 // The angle (deg, 0-180) between an outward body normal and the upstream
 // direction (-x: the stream flows along +x). NaN for a non-finite normal.

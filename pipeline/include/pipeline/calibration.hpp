@@ -103,7 +103,7 @@ struct BowStationBiasBody {
 };
 struct BowStationBias {
   std::string shape;  // scene::bow_shape_class of the bodies
-  std::string model;  // "inclination" or "inclination_mach"
+  std::string model;  // one of station_bias_models() (bow_station_bias.hpp)
   std::vector<double> coefficients;
   // RMS over bodies of their left-out corrected station RMS: the band's
   // relative scatter for bodies of this shape; and the same bodies'

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <stdexcept>
 
 #include "scene/units.hpp"
 
@@ -22,18 +23,31 @@ constexpr double kLooTie = 1e-12;
 // across the inclinations to catch a quadratic's turning point.
 constexpr int kPositivityChecks = 16;
 
-// The candidate models, simplest first. The quadratic lets the fold flatten
-// near the stagnation line, where the training discs' stations do.
+// The candidate models, simplest first, each its terms at s (the scaled
+// inclination) and 1/M^2. The quadratic lets the fold flatten near the
+// stagnation line, where the training discs' stations do.
 struct Model {
   const char* name;
   const char* formula;
-  std::size_t coefficients;
+  std::vector<double> (*terms)(double s, double inverse_mach2);
   bool mach_term;
 };
 constexpr std::array<Model, 3> kModels{{
-    {"inclination", "r = b0 + b1*s, s = inclination/90deg", 2, false},
-    {"inclination_mach", "r = b0 + b1*s + b2/M^2, s = inclination/90deg", 3, true},
-    {"inclination2_mach", "r = b0 + b1*s + b2*s^2 + b3/M^2, s = inclination/90deg", 4, true},
+    {"inclination", "r = b0 + b1*s, s = inclination/90deg",
+     [](double s, double) {
+       return std::vector<double>{1.0, s};
+     },
+     false},
+    {"inclination_mach", "r = b0 + b1*s + b2/M^2, s = inclination/90deg",
+     [](double s, double m2) {
+       return std::vector<double>{1.0, s, m2};
+     },
+     true},
+    {"inclination2_mach", "r = b0 + b1*s + b2*s^2 + b3/M^2, s = inclination/90deg",
+     [](double s, double m2) {
+       return std::vector<double>{1.0, s, s * s, m2};
+     },
+     true},
 }};
 
 const Model* find_model(const std::string& name) {
@@ -42,12 +56,11 @@ const Model* find_model(const std::string& name) {
   return nullptr;
 }
 
+// The table reader refuses unknown names, so one here is a caller's bug.
 std::vector<double> basis(const std::string& model, double mach, double inclination) {
-  const double s = inclination / kQuarterTurnDeg;
-  const double mach_term = 1.0 / (mach * mach);
-  if (model == "inclination") return {1.0, s};
-  if (model == "inclination_mach") return {1.0, s, mach_term};
-  return {1.0, s, s * s, mach_term};
+  const Model* m = find_model(model);
+  if (!m) throw std::invalid_argument("station bias: unknown model '" + model + "'");
+  return m->terms(inclination / kQuarterTurnDeg, 1.0 / (mach * mach));
 }
 
 double evaluate(const std::string& model, const std::vector<double>& c, double mach,
@@ -155,7 +168,7 @@ bool usable(const StationErrors& b) {
 
 std::size_t station_bias_coefficients(const std::string& model) {
   const Model* m = find_model(model);
-  return m ? m->coefficients : 0;
+  return m ? m->terms(0.0, 0.0).size() : 0;
 }
 
 std::string station_bias_formula(const std::string& model) {

@@ -116,13 +116,13 @@ std::vector<Vec2> validated_polygon(const std::vector<Vec2>& raw) {
   for (const Vec2 p : pts) scale = std::max({scale, std::abs(p.x), std::abs(p.y)});
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const Vec2 a = pts[i], b = pts[(i + 1) % pts.size()];
-    if (norm(b - a) <= kZeroEdge * std::max(scale, 1.0))
+    if (norm(b - a) <= kZeroEdge * scale)
       throw InputError("zero-length edge " + std::to_string(i) + " at " + pt(a));
   }
   Polygon poly = to_cgal(pts);
   // Zero area first: CGAL calls a collinear polygon non-simple, which would
   // hide the more useful message.
-  if (std::abs(CGAL::to_double(poly.area())) <= kZeroEdge * std::max(scale * scale, 1.0))
+  if (std::abs(CGAL::to_double(poly.area())) <= kZeroEdge * scale * scale)
     throw InputError("polygon has zero area");
   if (!poly.is_simple()) {
     // Name the first pair of crossing edges for the user.

@@ -69,10 +69,10 @@ BodySpec parse_body(Section& s) {
     b.length = s.number("length", b.length, {kMinBodySize, kMaxBodySize});
   } else if (kind == "disc") {
     b.kind = BodyKind::disc;
-    b.radius = at_most(s, "radius", s.number("radius", b.radius, positive()), kMaxBodySize);
+    b.radius = s.number("radius", b.radius, {kMinBodySize, kMaxBodySize});
   } else if (kind == "apollo") {
     b.kind = BodyKind::apollo;
-    b.diameter = at_most(s, "diameter", s.number("diameter", b.diameter, positive()), kMaxBodySize);
+    b.diameter = s.number("diameter", b.diameter, {kMinBodySize, kMaxBodySize});
   } else {
     b.kind = BodyKind::polygon;
     b.points = s.points("points");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "scene/body.hpp"
 #include "scene/body_traits.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
@@ -145,7 +146,8 @@ TEST(Parse, OutOfRangeValues) {
                "key 'granular.elastic_impact_speed'");
   expect_error(std::string(kMinimal) + "granular: {elastic_impact_speed: 1e9}\n",
                "key 'granular.elastic_impact_speed'");
-  expect_error("body: {kind: disc, radius: -1}\nfreestream: {mach: 3}\n", "key 'body.radius': expected a number > 0");
+  expect_error("body: {kind: disc, radius: -1}\nfreestream: {mach: 3}\n",
+               "key 'body.radius': expected a number in [1e-06, 1e+06], got -1");
   expect_error("body: {kind: wedge}\nfreestream: {mach: 3, gamma: 0.9}\n", "key 'freestream.gamma'");
   expect_error(std::string(kMinimal) + "mesh: {h_min: 0.1, h_max: 0.01}\n", "key 'mesh.h_min': must not exceed h_max");
 }
@@ -184,6 +186,33 @@ TEST(Parse, PolygonErrorsNameTheProblem) {
   expect_error("body: {kind: polygon, points: [[0,0],[1,0],[2,0]]}\nfreestream: {mach: 3}\n", "zero area");
   expect_error("body: {kind: polygon, points: [[0,0],[1]]}\nfreestream: {mach: 3}\n", "point 1: expected [x, y]");
   expect_error("body: {kind: polygon}\nfreestream: {mach: 3}\n", "key 'body.points': required");
+}
+
+// Every body kind takes the same size range, named by its own key: a disc
+// too small to be a polygon must not fail later as an unnamed "zero area".
+TEST(Parse, BodySizesShareOneRange) {
+  expect_error("body: {kind: disc, radius: 1e-9}\nfreestream: {mach: 3}\n",
+               "key 'body.radius': expected a number in [1e-06, 1e+06], got 1e-9");
+  expect_error("body: {kind: apollo, diameter: 2e6}\nfreestream: {mach: 3}\n",
+               "key 'body.diameter': expected a number in [1e-06, 1e+06], got 2e6");
+  expect_error("body: {kind: wedge, length: 1e-7}\nfreestream: {mach: 3}\n", "key 'body.length'");
+  for (const char* body : {"{kind: disc, radius: 1e-6}", "{kind: apollo, diameter: 1e-6}",
+                           "{kind: wedge, angle_deg: 10, length: 1e-6}"}) {
+    const auto s =
+        parse_scene(std::string("body: ") + body + "\nfreestream: {mach: 3}\n", "tiny.yaml");
+    EXPECT_NO_THROW((void)scene::make_body(*s.body)) << body;
+  }
+}
+
+// Zero length and zero area are relative to the polygon's own size: a body
+// given in metres at the scale of millimetres is a body, not a point.
+TEST(Parse, TinyPolygonIsABody) {
+  EXPECT_NO_THROW(
+      parse_scene("body: {kind: polygon, points: "
+                  "[[0,0],[1e-5,1e-6],[2e-5,0],[1e-5,-1e-6]]}\nfreestream: {mach: 3}\n",
+                  "p.yaml"));
+  expect_error("body: {kind: polygon, points: [[0,0],[1e-5,0],[2e-5,0]]}\nfreestream: {mach: 3}\n",
+               "zero area");
 }
 
 TEST(Parse, DomainOverrideMustClearTheBody) {

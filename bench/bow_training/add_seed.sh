@@ -6,8 +6,8 @@
 # shockfit stages are rerun. Writes OUTDIR as `pipeline calibrate
 # --bow-shock-runs` reads a run: the source's scene (seed replaced), its
 # uniform grids (cfd/uniform_*), and granular/ + shockfit/ of the new seed; the
-# summary's prediction CPU seconds become the new run's. The grid's CPU is
-# charged again with each copy, so a fit's training cost overstates.
+# summary's prediction CPU seconds become the new run's and its grids' CPU
+# seconds 0 (they are charged once, with the source run).
 #   bench/bow_training/add_seed.sh RUNDIR SEED OUTDIR
 # Run from the repository root after the build.
 set -euo pipefail
@@ -37,5 +37,10 @@ run = json.load(open(sys.argv[1]))
 granular = json.load(open(sys.argv[2]))
 run["prediction"]["cpu_seconds"] = granular["cpu_seconds"]
 run["prediction"]["note"] = "granular and shockfit rerun at another seed; the gas grids are the source run's"
+for r in run.get("runs", []):
+    # The grids are the source run's: charged there, not again here.
+    r["cpu_seconds"] = 0.0
+    r["mesh_cpu_seconds"] = 0.0
+    r["note"] = "the source run's grid; its CPU is charged with that run"
 json.dump(run, open(sys.argv[3], "w"), indent=2)
 EOF

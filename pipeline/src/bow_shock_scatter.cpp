@@ -90,11 +90,16 @@ nlohmann::json fit_station_biases(const std::vector<StationErrors>& bodies, BowS
                           {"standoff_relative_error", b.standoff},
                           {"left_out_relative_rms", b.loo_rms},
                           {"left_out_standoff_relative_error", b.loo_standoff}});
+    nlohmann::json standoff_candidates = nlohmann::json::object();
+    for (const auto& [name, rms] : fit->standoff_left_out_rms) standoff_candidates[name] = rms;
     report.push_back({{"shape", shape},
                       {"model", fit->model},
                       {"coefficients", fit->coefficients},
                       {"left_out_relative_rms", fit->relative_rms},
                       {"uncorrected_relative_rms", fit->uncorrected_rms},
+                      {"standoff_model", fit->standoff_model},
+                      {"standoff_coefficients", fit->standoff_coefficients},
+                      {"standoff_left_out_rms", standoff_candidates},
                       {"used", pays},
                       {"bodies", per_body}});
     if (pays) w.station_biases.push_back(*fit);

@@ -56,6 +56,33 @@ const Model* find_model(const std::string& name) {
   return nullptr;
 }
 
+// The standoff's own term q(M) on top of the fold, simplest first: none, a
+// constant, a constant and 1/M^2 (the gas's density ratio across a normal
+// shock moves with 1/M^2).
+struct StandoffModel {
+  const char* name;
+  const char* formula;
+  std::size_t coefficients;
+};
+constexpr std::array<StandoffModel, 3> kStandoffModels{{
+    {"none", "q = 0", 0},
+    {"constant", "q = a0", 1},
+    {"inverse_mach2", "q = a0 + a1/M^2", 2},
+}};
+
+const StandoffModel* find_standoff_model(const std::string& name) {
+  for (const auto& m : kStandoffModels)
+    if (name == m.name) return &m;
+  return nullptr;
+}
+
+double standoff_term(const std::string& model, const std::vector<double>& a, double mach) {
+  if (model == "constant") return a.at(0);
+  if (model == "inverse_mach2") return a.at(0) + a.at(1) / (mach * mach);
+  if (model == "none") return 0.0;
+  throw std::invalid_argument("station bias: unknown standoff model '" + model + "'");
+}
+
 // The table reader refuses unknown names, so one here is a caller's bug.
 std::vector<double> basis(const std::string& model, double mach, double inclination) {
   const Model* m = find_model(model);
@@ -130,6 +157,84 @@ Corrected corrected(const std::string& model, const std::vector<double>& c,
   return out;
 }
 
+// Least squares of the bodies' standoff errors left after the fold (each
+// body once); nullopt where the bodies cannot determine the term.
+std::optional<std::vector<double>> solve_standoff(const std::string& model,
+                                                  const std::vector<double>& residual,
+                                                  const std::vector<double>& machs) {
+  const std::size_t p = find_standoff_model(model)->coefficients;
+  if (p == 0) return std::vector<double>{};
+  if (std::set<double>(machs.begin(), machs.end()).size() < p) return std::nullopt;
+  Eigen::MatrixXd a(static_cast<Eigen::Index>(residual.size()), static_cast<Eigen::Index>(p));
+  Eigen::VectorXd y(static_cast<Eigen::Index>(residual.size()));
+  for (std::size_t i = 0; i < residual.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    a(k, 0) = 1.0;
+    if (p > 1) a(k, 1) = 1.0 / (machs[i] * machs[i]);
+    y(k) = residual[i];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < static_cast<Eigen::Index>(p)) return std::nullopt;
+  const Eigen::VectorXd c = qr.solve(y);
+  return std::vector<double>(c.data(), c.data() + c.size());
+}
+
+// The bodies' standoff errors after a fold with coefficients c, `skip` left out.
+void standoff_residuals(const std::string& model, const std::vector<double>& c,
+                        const std::vector<StationErrors>& bodies, std::size_t skip,
+                        std::vector<double>& residual, std::vector<double>& machs) {
+  residual.clear();
+  machs.clear();
+  for (std::size_t j = 0; j < bodies.size(); ++j) {
+    if (j == skip) continue;
+    residual.push_back(corrected(model, c, bodies[j]).standoff);
+    machs.push_back(bodies[j].mach);
+  }
+}
+
+// Chooses the standoff term by the bodies' left-out standoff RMS (each body
+// left out of the fold and of the term alike; the simpler on a tie), fits it
+// on every body and rewrites each body's left-out standoff with it.
+void choose_standoff_term(BowStationBias& b, const std::vector<StationErrors>& bodies) {
+  const std::size_t n = bodies.size();
+  std::vector<std::vector<double>> folds;  // each body's left-out fold
+  for (std::size_t i = 0; i < n; ++i) folds.push_back(*solve(b.model, bodies, i));
+  std::vector<double> residual, machs;
+  double best_rms = kNaN;
+  std::vector<double> best_loo;
+  b.standoff_left_out_rms.clear();
+  for (const auto& m : kStandoffModels) {
+    std::vector<double> loo;
+    for (std::size_t i = 0; i < n; ++i) {
+      standoff_residuals(b.model, folds[i], bodies, i, residual, machs);
+      const auto a = solve_standoff(m.name, residual, machs);
+      if (!a) break;
+      const double q =
+          standoff_term(m.name, *a, std::clamp(bodies[i].mach, b.mach_low, b.mach_high));
+      loo.push_back((1.0 + corrected(b.model, folds[i], bodies[i]).standoff) / (1.0 + q) - 1.0);
+    }
+    if (loo.size() < n) continue;
+    standoff_residuals(b.model, b.coefficients, bodies, n, residual, machs);
+    const auto a = solve_standoff(m.name, residual, machs);
+    if (!a) continue;
+    // The corrected standoff must stay positive wherever the term is held.
+    if (!(1.0 + standoff_term(m.name, *a, b.mach_low) > kMinBiasDenominator &&
+          1.0 + standoff_term(m.name, *a, b.mach_high) > kMinBiasDenominator))
+      continue;
+    double ss = 0;
+    for (const double e : loo) ss += e * e;
+    const double rms = std::sqrt(ss / static_cast<double>(n));
+    b.standoff_left_out_rms.emplace_back(m.name, rms);
+    if (std::isnan(best_rms) || rms < best_rms - kLooTie) {
+      best_rms = rms;
+      best_loo = loo;
+      b.standoff_model = m.name;
+      b.standoff_coefficients = *a;
+    }
+  }
+  for (std::size_t i = 0; i < n && i < best_loo.size(); ++i) b.bodies[i].loo_standoff = best_loo[i];
+}
+
 // Several runs of one body (same name and Mach number: other seeds) are one
 // body: their stations pooled, their standoff errors averaged, so that
 // leaving the body out leaves all of them out.
@@ -176,6 +281,22 @@ std::string station_bias_formula(const std::string& model) {
   return m ? m->formula : "";
 }
 
+std::string standoff_term_formula(const std::string& model) {
+  const StandoffModel* m = find_standoff_model(model);
+  return m ? m->formula : "";
+}
+
+std::size_t standoff_term_coefficients(const std::string& model) {
+  const StandoffModel* m = find_standoff_model(model);
+  return m ? m->coefficients : kUnknownStandoffModel;
+}
+
+std::string standoff_term_models() {
+  std::string out;
+  for (const auto& m : kStandoffModels) out += (out.empty() ? "" : ", ") + std::string(m.name);
+  return out;
+}
+
 std::string station_bias_models() {
   std::string out;
   for (const auto& m : kModels) out += (out.empty() ? "" : ", ") + std::string(m.name);
@@ -191,6 +312,11 @@ double BowStationBias::relative_error(double mach, double inclination) const {
   const double m = std::clamp(mach, mach_low, mach_high);
   const double s = std::clamp(inclination, 0.0, max_inclination_deg);
   return evaluate(model, coefficients, m, s);
+}
+
+double BowStationBias::standoff_error(double mach) const {
+  return standoff_term(standoff_model, standoff_coefficients,
+                       std::clamp(mach, mach_low, mach_high));
 }
 
 std::optional<BowStationBias> fit_station_bias(const std::string& shape,
@@ -258,6 +384,7 @@ std::optional<BowStationBias> fit_station_bias(const std::string& shape,
     b.uncorrected_rms = std::sqrt(ss0 / n);
     if (!best || b.relative_rms < best->relative_rms - kLooTie) best = b;
   }
+  if (best) choose_standoff_term(*best, bodies);
   return best;
 }
 
@@ -282,7 +409,7 @@ double left_out_standoff_rms(const BowStationBias& b) {
 }
 
 double unbiased_standoff_factor(const BowStationBias& b, double mach) {
-  return 1.0 / (1.0 + b.relative_error(mach, 0.0));
+  return 1.0 / ((1.0 + b.relative_error(mach, 0.0)) * (1.0 + b.standoff_error(mach)));
 }
 
 }  // namespace pipeline

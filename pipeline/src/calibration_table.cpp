@@ -139,6 +139,27 @@ BowStationBias read_station_bias(const std::string& path, const YAML::Node& n,
   b.mach_high = optional_number(n, "mach_high", kNaN);
   if (!(b.mach_low > 0 && b.mach_high >= b.mach_low))
     bad(path, n, key, "expected mach_low > 0 and mach_high >= mach_low");
+  if (const auto m = n["standoff_model"]) {
+    b.standoff_model = m.as<std::string>();
+    const std::size_t terms = standoff_term_coefficients(b.standoff_model);
+    if (terms == kUnknownStandoffModel)
+      bad(path, m, key + ".standoff_model",
+          "unknown model '" + b.standoff_model + "' (" + standoff_term_models() + ")");
+    const auto a = n["standoff_coefficients"];
+    if (terms > 0 && (!a || !a.IsSequence() || a.size() != terms))
+      bad(path, a ? a : n, key + ".standoff_coefficients",
+          "expected " + std::to_string(terms) + " coefficients for " + b.standoff_model);
+    for (std::size_t i = 0; i < terms; ++i) {
+      const double v = a[i].as<double>();
+      if (!std::isfinite(v)) bad(path, a[i], key + ".standoff_coefficients", "not a finite number");
+      b.standoff_coefficients.push_back(v);
+    }
+  }
+  if (const auto r = n["standoff_left_out_rms"]) {
+    if (!r.IsMap()) bad(path, r, key + ".standoff_left_out_rms", "expected a map {model: rms}");
+    for (const auto& kv : r)
+      b.standoff_left_out_rms.emplace_back(kv.first.as<std::string>(), kv.second.as<double>());
+  }
   if (const auto bodies = n["bodies"]) {
     if (!bodies.IsSequence()) bad(path, bodies, key + ".bodies", "expected a list");
     for (const auto& q : bodies) {
@@ -172,6 +193,16 @@ void write_station_bias(YAML::Emitter& e, const BowStationBias& b) {
   number("mach_low", b.mach_low);
   number("mach_high", b.mach_high);
   number("cpu_seconds", b.cpu_seconds);
+  e << YAML::Key << "standoff_model" << YAML::Value << b.standoff_model << YAML::Key
+    << "standoff_formula" << YAML::Value << YAML::DoubleQuoted
+    << standoff_term_formula(b.standoff_model) << YAML::Key << "standoff_coefficients"
+    << YAML::Value << YAML::Flow << b.standoff_coefficients;
+  if (!b.standoff_left_out_rms.empty()) {
+    e << YAML::Key << "standoff_left_out_rms" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    for (const auto& [name, rms] : b.standoff_left_out_rms)
+      e << YAML::Key << name << YAML::Value << rms;
+    e << YAML::EndMap;
+  }
   e << YAML::Key << "bodies" << YAML::Value << YAML::BeginSeq;
   for (const auto& r : b.bodies) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "body" << YAML::Value << r.body;

@@ -111,12 +111,16 @@ Prediction GranularPredictor::predict(const PredictContext& cx) const {
           {"shape", bias->shape},
           {"model", bias->model},
           {"coefficients", bias->coefficients},
+          {"standoff_model", bias->standoff_model},
+          {"standoff_coefficients", bias->standoff_coefficients},
           {"standoff_factor", f},
           {"left_out_standoff_rms", json_number(left_out_standoff_rms(*bias))}};
       p.standoff *= f;
       p.standoff_ci *= f;
-      p.fingerprint = fingerprint({p.fingerprint, fmt::format("station bias {} {}", bias->model,
-                                                              fmt::join(bias->coefficients, " "))});
+      p.fingerprint = fingerprint(
+          {p.fingerprint, fmt::format("station bias {} {} standoff {} {}", bias->model,
+                                      fmt::join(bias->coefficients, " "), bias->standoff_model,
+                                      fmt::join(bias->standoff_coefficients, " "))});
     }
     for (auto& q : rows) {
       if (!q.accepted) continue;

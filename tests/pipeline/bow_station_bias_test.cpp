@@ -92,6 +92,51 @@ TEST(StationBias, AFoldThatMovesWithMachIsFoundAndLeftOutBodiesAreCorrected) {
   EXPECT_DOUBLE_EQ(fit->max_inclination_deg, 85.0);
 }
 
+// The standoff, a parabola's vertex through the near-axis stations, can miss
+// by more than the fold at s = 0 says: then it takes its own term q(M), chosen
+// like the fold by leaving each body out; where it misses by the fold alone,
+// none.
+pipeline::StationErrors with_standoff_term(pipeline::StationErrors e, double q) {
+  e.standoff_relative = (1.0 + e.standoff_relative) * (1.0 + q) - 1.0;
+  return e;
+}
+
+TEST(StationBias, AStandoffThatMissesBeyondItsStationsTakesItsOwnTerm) {
+  const auto bodies = [](auto q) {
+    std::vector<pipeline::StationErrors> out;
+    for (const double m : {3.0, 4.0, 5.0, 6.0})
+      out.push_back(
+          with_standoff_term(folded_body("m" + std::to_string(m), m, 0.1, -0.4, 1.5), q(m)));
+    return out;
+  };
+  const auto none = pipeline::fit_station_bias("disc", bodies([](double) { return 0.0; }));
+  ASSERT_TRUE(none.has_value());
+  EXPECT_EQ(none->standoff_model, "none");
+  EXPECT_TRUE(none->standoff_coefficients.empty());
+  EXPECT_EQ(none->standoff_left_out_rms.size(), 3u);  // every candidate judged
+
+  const auto constant = pipeline::fit_station_bias("disc", bodies([](double) { return 0.05; }));
+  ASSERT_TRUE(constant.has_value());
+  EXPECT_EQ(constant->model, "inclination_mach");  // the stations' fold is untouched
+  EXPECT_EQ(constant->standoff_model, "constant");
+  ASSERT_EQ(constant->standoff_coefficients.size(), 1u);
+  EXPECT_NEAR(constant->standoff_coefficients[0], 0.05, 1e-9);
+  for (const auto& b : constant->bodies) EXPECT_NEAR(b.loo_standoff, 0.0, 1e-9);
+
+  const auto mach =
+      pipeline::fit_station_bias("disc", bodies([](double m) { return -0.02 + 1.2 / (m * m); }));
+  ASSERT_TRUE(mach.has_value());
+  EXPECT_EQ(mach->standoff_model, "inverse_mach2");
+  ASSERT_EQ(mach->standoff_coefficients.size(), 2u);
+  EXPECT_NEAR(mach->standoff_coefficients[0], -0.02, 1e-9);
+  EXPECT_NEAR(mach->standoff_coefficients[1], 1.2, 1e-9);
+  // The standoff is divided by both: the fold at the nose and its own term,
+  // each held at the training Mach ends.
+  const double r0 = 0.1 + 1.5 / 16.0, q = -0.02 + 1.2 / 16.0;
+  EXPECT_NEAR(pipeline::unbiased_standoff_factor(*mach, 4.0), 1.0 / ((1.0 + r0) * (1.0 + q)), 1e-9);
+  EXPECT_DOUBLE_EQ(mach->standoff_error(9.0), mach->standoff_error(6.0));
+}
+
 TEST(StationBias, AFoldThatFlattensAtTheNoseTakesTheQuadraticModel) {
   // Flat near the stagnation line, falling toward the wings: a straight
   // line in s would stand the nose wrong; the quadratic is exact there.
@@ -202,6 +247,22 @@ TEST(StationBias, TheTableKeepsItAndTheShapesBodiesGetIt) {
   ASSERT_EQ(b->bodies.size(), 1u);
   EXPECT_EQ(b->bodies[0].loo_standoff, -0.05);
   EXPECT_NEAR(pipeline::left_out_standoff_rms(*b), 0.05, 1e-15);
+  EXPECT_EQ(b->standoff_model, "none");  // a bias written without a standoff term
+
+  auto termed = disc_bias();
+  termed.standoff_model = "inverse_mach2";
+  termed.standoff_coefficients = {-0.02, 0.3};
+  termed.standoff_left_out_rms = {{"none", 0.04}, {"constant", 0.035}, {"inverse_mach2", 0.03}};
+  t.bow_shock->station_biases = {termed};
+  pipeline::write_calibration(t, path);
+  const auto termed_table = pipeline::read_calibration(path);
+  const auto* termed_back = termed_table.bow_shock->station_bias("disc");
+  ASSERT_NE(termed_back, nullptr);
+  EXPECT_EQ(termed_back->standoff_model, "inverse_mach2");
+  EXPECT_EQ(termed_back->standoff_coefficients, termed.standoff_coefficients);
+  EXPECT_EQ(termed_back->standoff_left_out_rms, termed.standoff_left_out_rms);
+  t.bow_shock->station_biases = {disc_bias()};
+  pipeline::write_calibration(t, path);
 
   auto disc = scene::parse_scene("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
   const auto applied = pipeline::apply_calibration(disc, path);
@@ -233,6 +294,24 @@ TEST(StationBias, BadBlocksAreInputErrorsNamingTheKey) {
   } catch (const scene::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bow_shock.station_bias[0].model"), std::string::npos);
   }
+  // A standoff term of an unknown model, or with the wrong coefficient count.
+  const auto expect_key = [&](const pipeline::BowStationBias& b, const std::string& key) {
+    t.bow_shock->station_biases = {b};
+    pipeline::write_calibration(t, path);
+    try {
+      pipeline::read_calibration(path);
+      ADD_FAILURE() << "read a bad " << key;
+    } catch (const scene::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
+  auto cubic = disc_bias();
+  cubic.standoff_model = "cubic";
+  expect_key(cubic, "bow_shock.station_bias[0].standoff_model");
+  auto short_term = disc_bias();
+  short_term.standoff_model = "inverse_mach2";
+  short_term.standoff_coefficients = {0.1};
+  expect_key(short_term, "bow_shock.station_bias[0].standoff_coefficients");
   // A shape with its own e fit runs its bodies elsewhere than at the law.
   auto own = disc_bias();
   own.shape = "apollo";

@@ -20,6 +20,13 @@ namespace pipeline {
 std::size_t station_bias_coefficients(const std::string& model);
 std::string station_bias_formula(const std::string& model);
 std::string station_bias_models();
+// The standoff term's models ("none": q = 0; "constant": a0; "inverse_mach2":
+// a0 + a1/M^2): coefficient count (kUnknownStandoffModel for an unknown
+// name), formula ("" when unknown) and the names, for errors.
+inline constexpr std::size_t kUnknownStandoffModel = static_cast<std::size_t>(-1);
+std::size_t standoff_term_coefficients(const std::string& model);
+std::string standoff_term_formula(const std::string& model);
+std::string standoff_term_models();
 
 // The angle (deg, 0-180) between an outward body normal and the upstream
 // direction (-x: the stream flows along +x). NaN for a non-finite normal.
@@ -28,7 +35,9 @@ double inclination_deg(scene::Vec2 normal);
 // Each model fitted to the bodies' stations (each body's stations weighing
 // as much in all as another body's; several runs of one body, same name and
 // Mach number, pooled as that body), judged by leaving each body out; the
-// one with the smaller left-out RMS (the simpler on a tie). nullopt with
+// one with the smaller left-out RMS (the simpler on a tie). Then the
+// standoff's own term on top of it, likewise the one with the smallest
+// left-out standoff RMS (each body left out of the fold and the term). nullopt with
 // fewer than kMinBiasBodies bodies, a body without inclinations or standoff,
 // or where no model's corrected distances stay positive (1 + r above
 // kMinBiasDenominator) over the training range. The caller keeps it only
@@ -44,7 +53,8 @@ std::optional<BowStationBias> fit_station_bias(const std::string& shape,
 // they are.
 std::vector<scene::ShockCsvRow> unbiased_stations(const std::vector<scene::ShockCsvRow>& rows,
                                                   const BowStationBias& b, double mach);
-// The factor a standoff (and its interval) is multiplied by: 1 / (1 + r(mach, 0)).
+// The factor a standoff (and its interval) is multiplied by:
+// 1 / ((1 + r(mach, 0)) (1 + q(mach))), q the standoff's own term.
 double unbiased_standoff_factor(const BowStationBias& b, double mach);
 
 // The RMS of the training bodies' left-out standoff errors (relative): how

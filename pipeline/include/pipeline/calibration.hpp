@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pipeline/restitution_fit.hpp"
@@ -117,7 +118,16 @@ struct BowStationBias {
   // What its training runs cost (their predictors and the uniform grids
   // compared with), charged to the shape's predictions; NaN: not recorded.
   double cpu_seconds = scene::kNaN;
+  // The standoff's own relative error q(M) left after the fold at s = 0 (the
+  // standoff is the vertex of a parabola through the near-axis stations, not
+  // one station, and its Mach dependence need not be theirs): one of
+  // standoff_term_models() (bow_station_bias.hpp), "none" being q = 0,
+  // chosen by the bodies' left-out standoff RMS; that RMS per candidate.
+  std::string standoff_model = "none";
+  std::vector<double> standoff_coefficients;
+  std::vector<std::pair<std::string, double>> standoff_left_out_rms;
   double relative_error(double mach, double inclination_deg) const;
+  double standoff_error(double mach) const;  // q(M), held at the training Mach ends
 };
 
 // The granular bow shock's out-of-sample error under this table's e(M):

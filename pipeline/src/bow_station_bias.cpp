@@ -56,18 +56,21 @@ const Model* find_model(const std::string& name) {
   return nullptr;
 }
 
-// The standoff's own term q(M) on top of the fold, simplest first: none, a
-// constant, a constant and 1/M^2 (the gas's density ratio across a normal
-// shock moves with 1/M^2).
+// The standoff's own term q(M) on top of the fold, simplest first, each its
+// terms at 1/M^2: none, a constant, a constant and 1/M^2 (the gas's density
+// ratio across a normal shock moves with 1/M^2).
 struct StandoffModel {
   const char* name;
   const char* formula;
-  std::size_t coefficients;
+  std::vector<double> (*terms)(double inverse_mach2);
 };
 constexpr std::array<StandoffModel, 3> kStandoffModels{{
-    {"none", "q = 0", 0},
-    {"constant", "q = a0", 1},
-    {"inverse_mach2", "q = a0 + a1/M^2", 2},
+    {"none", "q = 0", [](double) { return std::vector<double>{}; }},
+    {"constant", "q = a0", [](double) { return std::vector<double>{1.0}; }},
+    {"inverse_mach2", "q = a0 + a1/M^2",
+     [](double m2) {
+       return std::vector<double>{1.0, m2};
+     }},
 }};
 
 const StandoffModel* find_standoff_model(const std::string& name) {
@@ -76,11 +79,17 @@ const StandoffModel* find_standoff_model(const std::string& name) {
   return nullptr;
 }
 
+std::vector<double> standoff_basis(const std::string& model, double mach) {
+  const StandoffModel* m = find_standoff_model(model);
+  if (!m) throw std::invalid_argument("station bias: unknown standoff model '" + model + "'");
+  return m->terms(1.0 / (mach * mach));
+}
+
 double standoff_term(const std::string& model, const std::vector<double>& a, double mach) {
-  if (model == "constant") return a.at(0);
-  if (model == "inverse_mach2") return a.at(0) + a.at(1) / (mach * mach);
-  if (model == "none") return 0.0;
-  throw std::invalid_argument("station bias: unknown standoff model '" + model + "'");
+  const auto row = standoff_basis(model, mach);
+  double q = 0;
+  for (std::size_t j = 0; j < row.size(); ++j) q += a.at(j) * row[j];
+  return q;
 }
 
 // The table reader refuses unknown names, so one here is a caller's bug.
@@ -162,15 +171,16 @@ Corrected corrected(const std::string& model, const std::vector<double>& c,
 std::optional<std::vector<double>> solve_standoff(const std::string& model,
                                                   const std::vector<double>& residual,
                                                   const std::vector<double>& machs) {
-  const std::size_t p = find_standoff_model(model)->coefficients;
+  const std::size_t p = standoff_basis(model, 1.0).size();
   if (p == 0) return std::vector<double>{};
+  // As many Mach numbers as terms, or the Mach term is not determined.
   if (std::set<double>(machs.begin(), machs.end()).size() < p) return std::nullopt;
   Eigen::MatrixXd a(static_cast<Eigen::Index>(residual.size()), static_cast<Eigen::Index>(p));
   Eigen::VectorXd y(static_cast<Eigen::Index>(residual.size()));
   for (std::size_t i = 0; i < residual.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    a(k, 0) = 1.0;
-    if (p > 1) a(k, 1) = 1.0 / (machs[i] * machs[i]);
+    const auto row = standoff_basis(model, machs[i]);
+    for (std::size_t j = 0; j < p; ++j) a(k, static_cast<Eigen::Index>(j)) = row[j];
     y(k) = residual[i];
   }
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
@@ -288,7 +298,7 @@ std::string standoff_term_formula(const std::string& model) {
 
 std::size_t standoff_term_coefficients(const std::string& model) {
   const StandoffModel* m = find_standoff_model(model);
-  return m ? m->coefficients : kUnknownStandoffModel;
+  return m ? m->terms(0.0).size() : kUnknownStandoffModel;
 }
 
 std::string standoff_term_models() {

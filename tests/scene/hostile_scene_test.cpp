@@ -79,7 +79,7 @@ TEST(HostileScene, ExtremeNumbersAreRefusedWithTheRange) {
       std::string(kBody) + "freestream: {mach: 3}\ncfd: {end_time: 10, write_interval: 1e-9}\n",
       "key 'cfd.write_interval'");
   expect_error("body: {kind: disc, radius: 1e300}\nfreestream: {mach: 3}\n",
-               "key 'body.radius': expected a number in (0, 1e+06]");
+               "key 'body.radius': expected a number in [1e-06, 1e+06]");
   expect_error("body: {kind: wedge, angle_deg: 10, length: 1e-300}\nfreestream: {mach: 3}\n",
                "key 'body.length'");
   expect_error(

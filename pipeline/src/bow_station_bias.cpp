@@ -219,8 +219,9 @@ void choose_standoff_term(BowStationBias& b, const std::vector<StationErrors>& b
       standoff_residuals(b.model, folds[i], bodies, i, residual, machs);
       const auto a = solve_standoff(m.name, residual, machs);
       if (!a) break;
-      const double q =
-          standoff_term(m.name, *a, std::clamp(bodies[i].mach, b.mach_low, b.mach_high));
+      // At the left-out body's own Mach number, extrapolated where it is an
+      // end, as the fold's left-out check is.
+      const double q = standoff_term(m.name, *a, bodies[i].mach);
       loo.push_back((1.0 + corrected(b.model, folds[i], bodies[i]).standoff) / (1.0 + q) - 1.0);
     }
     if (loo.size() < n) continue;

@@ -127,8 +127,9 @@ int main(int argc, char** argv) {
     calib->add_flag(
         "--station-bias", station_bias,
         "with --bow-shock-runs (runs at the table's blunt law): fit each blunt shape's station "
-        "bias, the fold of its granular bow shock against the gas's along the body, and write "
-        "it into the table; the pooled scatter and shape fits stay as they are");
+        "bias, the fold of its granular bow shock against the gas's along the body, with the "
+        "standoff's own term, and write it into the table; the pooled scatter and shape fits "
+        "stay as they are");
     int shape_seeds = pipeline::BowShapeOptions{}.seeds;
     calib
         ->add_option("--shape-seeds", shape_seeds,

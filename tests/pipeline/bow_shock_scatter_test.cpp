@@ -283,6 +283,19 @@ TEST(BowShockScatter, GranularBowShockBandCoversTheScatter) {
     EXPECT_NEAR(moved[i].ci, std::hypot(rows[i].ci / (1.0 + r), 1.96 * 0.05 * moved[i].distance),
                 1e-9);
   }
+
+  // The standoff's own term divides the standoff once more and leaves the
+  // stations where the fold put them; the prediction says which term it took.
+  auto termed = bias;
+  termed.standoff_model = "constant";
+  termed.standoff_coefficients = {0.05};
+  const auto with_term =
+      pipeline::predict_shock(s, "granular", dir.string(), 1, false, kNaN, 0.05, &termed);
+  EXPECT_NE(with_term.fingerprint, folded.fingerprint);
+  EXPECT_NEAR(with_term.standoff, p.standoff / (1.2 * 1.05), 1e-12);
+  EXPECT_NEAR(with_term.standoff_ci, p.standoff_ci / (1.2 * 1.05), 1e-12);
+  EXPECT_EQ(with_term.details.at("station_bias").at("standoff_model"), "constant");
+  EXPECT_EQ(with_term.curve, folded.curve);
 }
 
 // The scatter belongs to the table's e(M): a run with another restitution

@@ -50,10 +50,23 @@ constexpr std::array<Model, 3> kModels{{
      true},
 }};
 
-const Model* find_model(const std::string& name) {
-  for (const auto& m : kModels)
+// A row of a model table by name (nullptr when unknown), and the table's
+// names, for errors.
+template <class Table>
+auto find_named(const Table& table, const std::string& name) -> decltype(&table[0]) {
+  for (const auto& m : table)
     if (name == m.name) return &m;
   return nullptr;
+}
+template <class Table>
+std::string joined_names(const Table& table) {
+  std::string out;
+  for (const auto& m : table) out += (out.empty() ? "" : ", ") + std::string(m.name);
+  return out;
+}
+
+const Model* find_model(const std::string& name) {
+  return find_named(kModels, name);
 }
 
 // The standoff's own term q(M) on top of the fold, simplest first, each its
@@ -74,9 +87,13 @@ constexpr std::array<StandoffModel, 3> kStandoffModels{{
 }};
 
 const StandoffModel* find_standoff_model(const std::string& name) {
-  for (const auto& m : kStandoffModels)
-    if (name == m.name) return &m;
-  return nullptr;
+  return find_named(kStandoffModels, name);
+}
+
+double dot(const std::vector<double>& row, const std::vector<double>& c) {
+  double v = 0;
+  for (std::size_t j = 0; j < row.size(); ++j) v += c.at(j) * row[j];
+  return v;
 }
 
 std::vector<double> standoff_basis(const std::string& model, double mach) {
@@ -86,10 +103,7 @@ std::vector<double> standoff_basis(const std::string& model, double mach) {
 }
 
 double standoff_term(const std::string& model, const std::vector<double>& a, double mach) {
-  const auto row = standoff_basis(model, mach);
-  double q = 0;
-  for (std::size_t j = 0; j < row.size(); ++j) q += a.at(j) * row[j];
-  return q;
+  return dot(standoff_basis(model, mach), a);
 }
 
 // The table reader refuses unknown names, so one here is a caller's bug.
@@ -101,10 +115,25 @@ std::vector<double> basis(const std::string& model, double mach, double inclinat
 
 double evaluate(const std::string& model, const std::vector<double>& c, double mach,
                 double inclination) {
-  const auto row = basis(model, mach, inclination);
-  double r = 0;
-  for (std::size_t j = 0; j < row.size(); ++j) r += c[j] * row[j];
-  return r;
+  return dot(basis(model, mach, inclination), c);
+}
+
+// The coefficients c minimising |rows c - rhs|; nullopt where the rows do not
+// determine all p of them.
+std::optional<std::vector<double>> least_squares(const std::vector<std::vector<double>>& rows,
+                                                 const std::vector<double>& rhs, std::size_t p) {
+  if (rows.size() < p) return std::nullopt;
+  Eigen::MatrixXd a(rows.size(), p);
+  Eigen::VectorXd y(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t j = 0; j < p; ++j)
+      a(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
+    y(static_cast<Eigen::Index>(i)) = rhs[i];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  if (qr.rank() < static_cast<Eigen::Index>(p)) return std::nullopt;
+  const Eigen::VectorXd c = qr.solve(y);
+  return std::vector<double>(c.data(), c.data() + c.size());
 }
 
 // Each body's stations weigh 1 / n_i on their squared residuals, so a body
@@ -131,18 +160,14 @@ std::optional<std::vector<double>> solve(const std::string& model,
   }
   // A Mach term needs two Mach numbers in what it is fitted on.
   if (find_model(model)->mach_term && machs.size() < 2) return std::nullopt;
-  if (rows.size() < p) return std::nullopt;
-  Eigen::MatrixXd a(rows.size(), p);
-  Eigen::VectorXd y(rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    for (std::size_t j = 0; j < p; ++j)
-      a(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i][j];
-    y(static_cast<Eigen::Index>(i)) = rhs[i];
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-  if (qr.rank() < static_cast<Eigen::Index>(p)) return std::nullopt;
-  const Eigen::VectorXd c = qr.solve(y);
-  return std::vector<double>(c.data(), c.data() + c.size());
+  return least_squares(rows, rhs, p);
+}
+
+// One body's standoff corrected by the fold's coefficients c (its value at
+// the stagnation line).
+double corrected_standoff(const std::string& model, const std::vector<double>& c,
+                          const StationErrors& b) {
+  return (1.0 + b.standoff_relative) / (1.0 + evaluate(model, c, b.mach, 0.0)) - 1.0;
 }
 
 // One body's stations and standoff corrected by coefficients c.
@@ -162,44 +187,37 @@ Corrected corrected(const std::string& model, const std::vector<double>& c,
   const double n = static_cast<double>(b.relative.size());
   out.mean /= n;
   out.rms = std::sqrt(ss / n);
-  out.standoff = (1.0 + b.standoff_relative) / (1.0 + evaluate(model, c, b.mach, 0.0)) - 1.0;
+  out.standoff = corrected_standoff(model, c, b);
   return out;
 }
 
-// Least squares of the bodies' standoff errors left after the fold (each
-// body once); nullopt where the bodies cannot determine the term.
+// The bodies' standoff errors left after a fold with coefficients c, and
+// their Mach numbers; `skip` left out.
+struct StandoffSample {
+  std::vector<double> error, mach;
+};
+StandoffSample standoff_sample(const std::string& model, const std::vector<double>& c,
+                               const std::vector<StationErrors>& bodies, std::size_t skip) {
+  StandoffSample out;
+  for (std::size_t j = 0; j < bodies.size(); ++j) {
+    if (j == skip) continue;
+    out.error.push_back(corrected_standoff(model, c, bodies[j]));
+    out.mach.push_back(bodies[j].mach);
+  }
+  return out;
+}
+
+// Least squares of a standoff term on the sample (each body once); nullopt
+// where the bodies cannot determine it.
 std::optional<std::vector<double>> solve_standoff(const std::string& model,
-                                                  const std::vector<double>& residual,
-                                                  const std::vector<double>& machs) {
+                                                  const StandoffSample& sample) {
   const std::size_t p = standoff_basis(model, 1.0).size();
   if (p == 0) return std::vector<double>{};
   // As many Mach numbers as terms, or the Mach term is not determined.
-  if (std::set<double>(machs.begin(), machs.end()).size() < p) return std::nullopt;
-  Eigen::MatrixXd a(static_cast<Eigen::Index>(residual.size()), static_cast<Eigen::Index>(p));
-  Eigen::VectorXd y(static_cast<Eigen::Index>(residual.size()));
-  for (std::size_t i = 0; i < residual.size(); ++i) {
-    const auto k = static_cast<Eigen::Index>(i);
-    const auto row = standoff_basis(model, machs[i]);
-    for (std::size_t j = 0; j < p; ++j) a(k, static_cast<Eigen::Index>(j)) = row[j];
-    y(k) = residual[i];
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-  if (qr.rank() < static_cast<Eigen::Index>(p)) return std::nullopt;
-  const Eigen::VectorXd c = qr.solve(y);
-  return std::vector<double>(c.data(), c.data() + c.size());
-}
-
-// The bodies' standoff errors after a fold with coefficients c, `skip` left out.
-void standoff_residuals(const std::string& model, const std::vector<double>& c,
-                        const std::vector<StationErrors>& bodies, std::size_t skip,
-                        std::vector<double>& residual, std::vector<double>& machs) {
-  residual.clear();
-  machs.clear();
-  for (std::size_t j = 0; j < bodies.size(); ++j) {
-    if (j == skip) continue;
-    residual.push_back(corrected(model, c, bodies[j]).standoff);
-    machs.push_back(bodies[j].mach);
-  }
+  if (std::set<double>(sample.mach.begin(), sample.mach.end()).size() < p) return std::nullopt;
+  std::vector<std::vector<double>> rows;
+  for (const double m : sample.mach) rows.push_back(standoff_basis(model, m));
+  return least_squares(rows, sample.error, p);
 }
 
 // Chooses the standoff term by the bodies' left-out standoff RMS (each body
@@ -207,26 +225,31 @@ void standoff_residuals(const std::string& model, const std::vector<double>& c,
 // on every body and rewrites each body's left-out standoff with it.
 void choose_standoff_term(BowStationBias& b, const std::vector<StationErrors>& bodies) {
   const std::size_t n = bodies.size();
-  std::vector<std::vector<double>> folds;  // each body's left-out fold
-  for (std::size_t i = 0; i < n; ++i) folds.push_back(*solve(b.model, bodies, i));
-  std::vector<double> residual, machs;
+  // Per left-out body, what every candidate term is fitted on (the others'
+  // errors under the fold made without it) and its own error under that fold.
+  std::vector<StandoffSample> others;
+  std::vector<double> own;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::vector<double> fold = *solve(b.model, bodies, i);
+    others.push_back(standoff_sample(b.model, fold, bodies, i));
+    own.push_back(corrected_standoff(b.model, fold, bodies[i]));
+  }
+  const StandoffSample all = standoff_sample(b.model, b.coefficients, bodies, n);
   double best_rms = kNaN;
   std::vector<double> best_loo;
   b.standoff_left_out_rms.clear();
   for (const auto& m : kStandoffModels) {
     std::vector<double> loo;
     for (std::size_t i = 0; i < n; ++i) {
-      standoff_residuals(b.model, folds[i], bodies, i, residual, machs);
-      const auto a = solve_standoff(m.name, residual, machs);
+      const auto a = solve_standoff(m.name, others[i]);
       if (!a) break;
       // At the left-out body's own Mach number, extrapolated where it is an
       // end, as the fold's left-out check is.
       const double q = standoff_term(m.name, *a, bodies[i].mach);
-      loo.push_back((1.0 + corrected(b.model, folds[i], bodies[i]).standoff) / (1.0 + q) - 1.0);
+      loo.push_back((1.0 + own[i]) / (1.0 + q) - 1.0);
     }
     if (loo.size() < n) continue;
-    standoff_residuals(b.model, b.coefficients, bodies, n, residual, machs);
-    const auto a = solve_standoff(m.name, residual, machs);
+    const auto a = solve_standoff(m.name, all);
     if (!a) continue;
     // The corrected standoff must stay positive wherever the term is held.
     if (!(1.0 + standoff_term(m.name, *a, b.mach_low) > kMinBiasDenominator &&
@@ -303,15 +326,11 @@ std::size_t standoff_term_coefficients(const std::string& model) {
 }
 
 std::string standoff_term_models() {
-  std::string out;
-  for (const auto& m : kStandoffModels) out += (out.empty() ? "" : ", ") + std::string(m.name);
-  return out;
+  return joined_names(kStandoffModels);
 }
 
 std::string station_bias_models() {
-  std::string out;
-  for (const auto& m : kModels) out += (out.empty() ? "" : ", ") + std::string(m.name);
-  return out;
+  return joined_names(kModels);
 }
 
 double inclination_deg(scene::Vec2 normal) {

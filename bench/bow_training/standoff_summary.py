@@ -14,18 +14,10 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+from student_t import t95  # noqa: E402
+
 TARGET = 0.05  # the standoff target, relative
-# Two-sided 95% Student t quantiles by degrees of freedom (beyond 30: normal).
-T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306,
-       9: 2.262, 10: 2.228, 11: 2.201, 12: 2.179, 13: 2.160, 14: 2.145, 15: 2.131,
-       16: 2.120, 17: 2.110, 18: 2.101, 19: 2.093, 20: 2.086, 25: 2.060, 30: 2.042}
-
-
-def t95(dof):
-    if dof in T95:
-        return T95[dof]
-    below = [d for d in T95 if d <= dof]
-    return T95[max(below)] if dof <= 30 else 1.96
 
 
 def read_runs(outdir):

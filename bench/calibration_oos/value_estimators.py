@@ -26,12 +26,10 @@ import os
 import statistics as st
 import sys
 
-T95 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+from student_t import t95  # noqa: E402
+
 OUTLIER_SIGMAS = 3.5
-
-
-def t95(dof):
-    return T95[dof - 1] if dof <= len(T95) else 1.96 + 2.4 / dof
 
 
 def near_median(v):

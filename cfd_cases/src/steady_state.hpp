@@ -41,29 +41,35 @@ struct SteadyCriteria {
   // Bow-shock drift gate, for bodies whose shock may stand off (0: none, as
   // for attached shocks): no row passes while the shock on the stagnation
   // line (HistoryRow::shock_x) moves, by its least-squares slope over the
-  // last kShockDriftRows rows, faster than shock_drift_tol (scene units per
-  // flow-through) and significantly (beyond kShockDriftSignificance standard
-  // errors of the slope, so that flicker does not count as motion).
+  // last kShockDriftRows rows, faster than shock_drift_tol times the
+  // standoff (shock_nose_x - shock_x, the window's mean) per flow-through
+  // and significantly (beyond kShockDriftSignificance standard errors of
+  // the slope, so that flicker does not count as motion).
   double shock_drift_tol = 0.0;
+  double shock_nose_x = 0.0;  // the body's nose, where the standoff is measured from
 
   // The scene's rule for time-accurate runs.
   static SteadyCriteria time_accurate(const scene::CfdParams& p);
   // The scene's rule under local time stepping: the same tolerances, with
   // progress counted in iterations, steps_per_flow_through per flow-through.
   static SteadyCriteria iteration_windows(const scene::CfdParams& p, long steps_per_flow_through);
-  // These criteria with the bow-shock drift gate of the scene's body: on
-  // (kShockDriftPerLength body lengths per flow-through) when its shock may
-  // stand off (scene::shock_may_stand_off), off otherwise.
+  // These criteria for the scene's body: where its shock may stand off
+  // (scene::shock_may_stand_off) with the drift gate on
+  // (kShockDriftPerStandoff) and steady_tol at most kBowShockSteadyTol;
+  // otherwise unchanged.
   SteadyCriteria with_shock_drift_gate(const scene::Scene& s) const;
 };
 
 // Rows over which the shock's drift is fitted (2 flow-throughs at the default
-// write interval), its tolerance in body lengths per flow-through, and how
-// many standard errors of the fitted slope a drift must exceed to count
+// write interval), its tolerance as a fraction of the standoff per
+// flow-through, how many standard errors of the fitted slope a drift must
+// exceed to count, and the density change a bow shock's run must get under
+// (per flow-through, relative to rho_inf) outside its noise floor
 // (steady_state.cpp says how they were chosen).
 inline constexpr std::size_t kShockDriftRows = 10;
-inline constexpr double kShockDriftPerLength = 0.01;
+inline constexpr double kShockDriftPerStandoff = 0.002;
 inline constexpr double kShockDriftSignificance = 3.0;
+inline constexpr double kBowShockSteadyTol = 0.01;
 
 class SteadyState {
  public:

@@ -146,6 +146,12 @@ void resolve_box_particles(Scene& sc, Section& gran) {
 // grid, ~20 on a 0.5 R grid; at the default 10 it still crept 0.04-0.08 R
 // per flow-through).
 constexpr double kSubsonicOutflowEndTime = 40.0;
+// cfd.end_time when the scene gives none and the shock may stand off the
+// body: its steady rule waits for the standoff to hold still to 0.2% per
+// flow-through (cfd_cases/src/steady_state.cpp), which discs at Mach 3-6 on
+// their reference grids reach at 9.4-13.4 flow-throughs, past the default
+// 10; a bow shock that moves on at 30 is not steady.
+constexpr double kBowShockEndTime = 30.0;
 
 Scene parse_root(const YAML::Node& root, const std::string& origin) {
   Section top(root, origin, "");
@@ -211,6 +217,7 @@ Scene parse_root(const YAML::Node& root, const std::string& origin) {
     const BodyGeometry g = make_body(*sc.body);  // validates geometry early
     (void)g;
     (void)scene_domain(sc);  // validates an override against the body
+    if (!end_time_given && shock_may_stand_off(sc)) sc.cfd.end_time = kBowShockEndTime;
     if (!end_time_given && outflow_can_be_subsonic(sc)) sc.cfd.end_time = kSubsonicOutflowEndTime;
     const bool attached = attached_shock_beta(sc).has_value();
     if (!sc.granular.averaging_given && attached) sc.granular.averaging = kAttachedShockAveraging;

@@ -175,6 +175,18 @@ TEST(HardCases, DiscAtMach8FinishesSteadyOnTadmorFromTheStart) {
 }
 
 namespace {
+// A steady bow shock's fitted drift on the stagnation line, per flow-through
+// and relative to its standoff: the gate passes a drift within
+// kShockDriftPerStandoff or one insignificant against the shock's flicker
+// between cells, which on these coarse grids (cells of 0.1-2 radii) may be
+// larger; a shock still approaching as the disc references did (1-3%) fails.
+constexpr double kHeldStillPerStandoff = 5.0 * cfd::kShockDriftPerStandoff;
+
+// |drift| / standoff of a history row, the nose at nose_x.
+double relative_drift(const std::map<std::string, double>& row, double nose_x) {
+  return std::abs(row.at("shock_drift")) / std::abs(nose_x - row.at("shock_x"));
+}
+
 // The last row of a case's history.csv, by column name.
 std::map<std::string, double> last_history_row(const std::string& csv) {
   std::ifstream in(csv);
@@ -212,8 +224,8 @@ TEST(HardCases, BowShockProbeFindsTheDiscStandoffNearBillig) {
                billig = scene::billig_standoff_cylinder(4.0);
   RecordProperty("standoff_radii", std::to_string(standoff));
   EXPECT_NEAR(standoff, billig, kDiscM4StandoffTol * billig) << "standoff " << standoff << " R";
-  // Steady means the shock held still too: within the gate's tolerance.
-  EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength * 0.5);
+  // Steady means the shock held still too.
+  EXPECT_LE(relative_drift(row, -0.5), kHeldStillPerStandoff);
 }
 
 TEST(HardCases, NearSonicDiscSettlesWithoutFallbackInTheTimeItIsGiven) {
@@ -242,8 +254,7 @@ TEST(HardCases, NearSonicDiscSettlesWithoutFallbackInTheTimeItIsGiven) {
   EXPECT_LT(r.final_force_change, s.cfd.force_tol);
   const auto row = last_history_row(r.history_csv);
   constexpr double kRadius = 0.5;  // the body length of a disc
-  EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength * kRadius)
-      << "the shock still creeps";
+  EXPECT_LE(relative_drift(row, -kRadius), kHeldStillPerStandoff) << "the shock still creeps";
   // A scene that states its end_time keeps it.
   EXPECT_EQ(scene::parse_scene(
                 "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\ncfd: {end_time: 10}\n")
@@ -294,8 +305,7 @@ TEST(HardCases, NearSonicDiscSettlesOnAGridClusteredAtItsBowShock) {
   EXPECT_TRUE(r.fallback.empty()) << r.fallback;
   EXPECT_EQ(r.outflow, "subsonic");
   EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_LE(std::abs(last_history_row(r.history_csv).at("shock_drift")),
-            cfd::kShockDriftPerLength * kRadius);
+  EXPECT_LE(relative_drift(last_history_row(r.history_csv), -kRadius), kHeldStillPerStandoff);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 100, 100));
 }
 
@@ -327,7 +337,7 @@ TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   EXPECT_NE(scene::read_file(u.dir + "/case/system/fvSchemes").find("fluxScheme      Tadmor;"),
             std::string::npos);
   const auto row = last_history_row(u.result.history_csv);
-  EXPECT_LE(std::abs(row.at("shock_drift")), cfd::kShockDriftPerLength);
+  EXPECT_LE(relative_drift(row, 0.0), kHeldStillPerStandoff);
   const double standoff = -row.at("shock_x");  // apex at x = 0, wedge length 1
   RecordProperty("standoff_lengths", std::to_string(standoff));
   EXPECT_GT(standoff, 0.0);

@@ -235,14 +235,15 @@ TEST(SteadyState, CriteriaFollowTheScene) {
   EXPECT_EQ(c.steps_per_flow_through, 1);  // never a division by zero
 }
 
-// The bow-shock drift gate. A disc of radius 0.5 at Mach 4: body length
-// 0.5 (the radius), so the gate's tolerance is 0.01 x 0.5 = 0.005 per
-// flow-through.
+// The bow-shock drift gate. A disc of radius 0.5 at Mach 4, centred at the
+// origin: its nose at x = -0.5, the shock at kShockX stands 0.3 off, so the
+// gate's tolerance is 0.002 x 0.3 = 0.0006 per flow-through.
 constexpr double kDiscRadius = 0.5;
-constexpr double kDriftTol = cfd::kShockDriftPerLength * kDiscRadius;
-// A cell at the shock (0.2 radii) and the standoff's start (x of the shock).
+constexpr double kNoseX = -kDiscRadius;
+// A cell at the shock (0.2 radii) and the shock's position on the stagnation line.
 constexpr double kCell = 0.1;
 constexpr double kShockX = -0.8;
+constexpr double kDriftTol = cfd::kShockDriftPerStandoff * (kNoseX - kShockX);
 
 scene::Scene disc_scene() {
   return scene::parse_scene("name: d\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n");
@@ -269,16 +270,65 @@ std::vector<cfd::HistoryRow> plateau_with_shock(int n, const std::function<doubl
 
 TEST(ShockDriftGate, OnForBodiesWhoseShockMayStandOffOnly) {
   const auto base = cfd::SteadyCriteria::time_accurate(defaults());
-  EXPECT_DOUBLE_EQ(base.with_shock_drift_gate(disc_scene()).shock_drift_tol, kDriftTol);
-  // An attached wedge (M3, 10 deg) is judged as before: no gate.
+  const auto disc = base.with_shock_drift_gate(disc_scene());
+  EXPECT_DOUBLE_EQ(disc.shock_drift_tol, cfd::kShockDriftPerStandoff);
+  EXPECT_DOUBLE_EQ(disc.shock_nose_x, kNoseX);
+  // A bow shock's density change must get under the tighter of the two.
+  EXPECT_DOUBLE_EQ(disc.steady_tol, cfd::kBowShockSteadyTol);
+  scene::CfdParams tight = defaults();
+  tight.steady_tol = 1e-3;
+  EXPECT_DOUBLE_EQ(
+      cfd::SteadyCriteria::time_accurate(tight).with_shock_drift_gate(disc_scene()).steady_tol,
+      1e-3);
+  // An attached wedge (M3, 10 deg) is judged as before: no gate, its tolerance.
   const scene::Scene attached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
   EXPECT_EQ(base.with_shock_drift_gate(attached).shock_drift_tol, 0.0);
-  // Beyond the maximum deflection (23 deg at Mach 2) the wedge's shock stands off.
+  EXPECT_EQ(base.with_shock_drift_gate(attached).steady_tol, base.steady_tol);
+  // Beyond the maximum deflection (23 deg at Mach 2) the wedge's shock stands
+  // off its apex (the nose, x = 0).
   const scene::Scene detached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 30, length: 2}\nfreestream: {mach: 2}\n");
-  EXPECT_DOUBLE_EQ(base.with_shock_drift_gate(detached).shock_drift_tol,
-                   cfd::kShockDriftPerLength * 2.0);
+  const auto wedge = base.with_shock_drift_gate(detached);
+  EXPECT_DOUBLE_EQ(wedge.shock_drift_tol, cfd::kShockDriftPerStandoff);
+  EXPECT_DOUBLE_EQ(wedge.shock_nose_x, 0.0);
+}
+
+TEST(ShockDriftGate, TheToleranceIsTheStandoffsNotTheBodys) {
+  // A shock approaching the body by 1% of its standoff per flow-through, as
+  // every disc reference did where the body-length gate (0.01 radii per
+  // flow-through here, three times this drift) let it stop: not steady.
+  const double standoff = kNoseX - kShockX;
+  const auto rows = plateau_with_shock(
+      40, [&](int k) { return kShockX + 0.01 * standoff * k * kRowFlowThroughs; });
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), 0);
+  EXPECT_NE(rule.why().find("of the standoff"), std::string::npos) << rule.why();
+}
+
+TEST(ShockDriftGate, ABowShockPausedAboveItsDensityToleranceIsNotSteady) {
+  // The disc at Mach 5.5: its shock paused for a flow-through with the
+  // density change at 0.03-0.045 per flow-through and falling, below the
+  // attached shocks' 0.05, then moved 4% of its standoff toward the body.
+  // Still, falling density change above kBowShockSteadyTol: not steady until
+  // it is under it twice.
+  auto rows = history(40, [](int k) { return Sample{0.045 * std::pow(0.9, k - 1), 1e-4}; });
+  for (auto& r : rows) {
+    r.shock_x = kShockX;
+    r.shock_cell = kCell;
+  }
+  int first_under = 0;
+  for (std::size_t k = 0; k < rows.size() && first_under == 0; ++k)
+    if (rows[k].drho_l2 < cfd::kBowShockSteadyTol) first_under = static_cast<int>(k) + 1;
+  ASSERT_GT(first_under, static_cast<int>(cfd::kShockDriftRows));
+  cfd::SteadyState rule(blunt_criteria());
+  EXPECT_EQ(steady_at(rule, rows), first_under + 1);
+  // The same history on an attached wedge is steady from the first rows.
+  const scene::Scene attached = scene::parse_scene(
+      "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
+  cfd::SteadyState wedge_rule(
+      cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(attached));
+  EXPECT_LT(steady_at(wedge_rule, rows), first_under);
 }
 
 TEST(ShockDriftGate, DriftingStandoffWithAFlatForceIsNotSteady) {

@@ -243,3 +243,23 @@ TEST(Parse, EveryShippedSceneParses) {
   }
   EXPECT_GE(count, 5);  // at least the five case studies
 }
+
+TEST(Parse, ABowShockGetsTheTimeItsStandoffNeedsToSettle) {
+  // Where the shock may stand off, the steady rule waits for the standoff to
+  // hold still (cfd_cases/src/steady_state.hpp), which reference grids reach
+  // past the attached default of 10 flow-throughs.
+  const auto end_time = [](const std::string& body_and_mach) {
+    return scene::parse_scene("name: s\n" + body_and_mach).cfd.end_time;
+  };
+  EXPECT_EQ(end_time("body: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n"),
+            10.0);
+  EXPECT_EQ(end_time("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n"), 30.0);
+  EXPECT_EQ(end_time("body: {kind: apollo, diameter: 1}\nfreestream: {mach: 5}\n"), 30.0);
+  // Beyond its maximum deflection (23 deg at Mach 2) a wedge's shock stands off.
+  EXPECT_EQ(end_time("body: {kind: wedge, angle_deg: 30, length: 1}\nfreestream: {mach: 2}\n"),
+            30.0);
+  // A scene that states its end_time keeps it.
+  EXPECT_EQ(
+      end_time("body: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\ncfd: {end_time: 12}\n"),
+      12.0);
+}

@@ -176,7 +176,7 @@ double SteadyState::progress(const HistoryRow& row) const {
 // tolerance (0.01 per flow-through) and the attached shocks' density
 // tolerance (0.05) every disc reference stopped at 7-10 flow-throughs with
 // its shock still approaching the body by 1-3% of the standoff per
-// flow-through, and a disc at Mach 5.5 run on settled 4.4% nearer the body
+// flow-through, and a disc at Mach 5.5 run on settled 4.3% nearer the body
 // than where it stopped, after pausing for a flow-through on the way
 // (docs/reliability.md, "Bow shocks that stopped early"). Hence also
 // kBowShockSteadyTol: a bow shock on a converging grid has no flicker floor
@@ -203,8 +203,14 @@ SteadyState::ShockGate SteadyState::shock_gate() {
   const double se = std::sqrt(line.sse / static_cast<double>(n - 2) / line.stt);
   rows_.back().shock_drift = slope;
   // A shock behind the nose (a body whose nose is not foremost) is held to
-  // its distance's size all the same.
-  const double tol = c_.shock_drift_tol * std::abs(c_.shock_nose_x - line.mean);
+  // its distance's size all the same. A standoff of a few cells is not
+  // resolved to a fraction of itself: the tolerance is never below
+  // kShockDriftCellsFloor cells per flow-through.
+  double cell = 0.0;
+  for (const HistoryRow& r : window(n))
+    if (std::isfinite(r.shock_cell)) cell = std::max(cell, r.shock_cell);
+  const double tol = std::max(c_.shock_drift_tol * std::abs(c_.shock_nose_x - line.mean),
+                              kShockDriftCellsFloor * cell);
   const bool moving = std::abs(slope) > tol && std::abs(slope) > kShockDriftSignificance * se;
   const char* per = c_.clock == SteadyClock::iterations ? "iteration flow-through" : "flow-through";
   return {!moving,

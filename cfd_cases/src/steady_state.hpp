@@ -68,6 +68,11 @@ struct SteadyCriteria {
 // (steady_state.cpp says how they were chosen).
 inline constexpr std::size_t kShockDriftRows = 10;
 inline constexpr double kShockDriftPerStandoff = 0.002;
+// The gate's tolerance is at least this many of the shock's cells
+// (HistoryRow::shock_cell) per flow-through: 0.2% of a standoff under 10
+// cells is below what its grid resolves. The disc references' standoffs span
+// 16-49 cells, so the floor does not loosen them.
+inline constexpr double kShockDriftCellsFloor = 0.02;
 inline constexpr double kShockDriftSignificance = 3.0;
 inline constexpr double kBowShockSteadyTol = 0.01;
 

@@ -240,8 +240,9 @@ TEST(SteadyState, CriteriaFollowTheScene) {
 // gate's tolerance is 0.002 x 0.3 = 0.0006 per flow-through.
 constexpr double kDiscRadius = 0.5;
 constexpr double kNoseX = -kDiscRadius;
-// A cell at the shock (0.2 radii) and the shock's position on the stagnation line.
-constexpr double kCell = 0.1;
+// A cell at the shock (0.02 radii: the standoff is 30 cells, as on the disc
+// references) and the shock's position on the stagnation line.
+constexpr double kCell = 0.01;
 constexpr double kShockX = -0.8;
 constexpr double kDriftTol = cfd::kShockDriftPerStandoff * (kNoseX - kShockX);
 
@@ -304,6 +305,23 @@ TEST(ShockDriftGate, TheToleranceIsTheStandoffsNotTheBodys) {
   cfd::SteadyState rule(blunt_criteria());
   EXPECT_EQ(steady_at(rule, rows), 0);
   EXPECT_NE(rule.why().find("of the standoff"), std::string::npos) << rule.why();
+}
+
+TEST(ShockDriftGate, AStandoffOfAFewCellsIsHeldToAFractionOfItsCell) {
+  // The same standoff on cells ten times coarser (3 cells): 0.2% of it per
+  // flow-through is 0.006 of a cell, below what the grid resolves; a drift of
+  // 0.015 cells per flow-through (0.5% of the standoff) is steady there, and
+  // not on the 30-cell grid.
+  const double drift = 0.015 * 10.0 * kCell;
+  auto coarse =
+      plateau_with_shock(30, [&](int k) { return kShockX + drift * k * kRowFlowThroughs; });
+  for (auto& r : coarse) r.shock_cell = 10.0 * kCell;
+  cfd::SteadyState coarse_rule(blunt_criteria());
+  EXPECT_EQ(steady_at(coarse_rule, coarse), 11);
+  const auto fine =
+      plateau_with_shock(30, [&](int k) { return kShockX + drift * k * kRowFlowThroughs; });
+  cfd::SteadyState fine_rule(blunt_criteria());
+  EXPECT_EQ(steady_at(fine_rule, fine), 0);
 }
 
 TEST(ShockDriftGate, ABowShockPausedAboveItsDensityToleranceIsNotSteady) {

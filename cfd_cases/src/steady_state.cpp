@@ -92,6 +92,14 @@ SteadyCriteria SteadyCriteria::with_shock_drift_gate(const scene::Scene& s) cons
   return c;
 }
 
+// A shock behind the nose (a body whose nose is not foremost) is held to its
+// distance's size all the same. A standoff of a few cells is not resolved to
+// a fraction of itself: the tolerance is never below kShockDriftCellsFloor
+// cells per flow-through.
+double SteadyCriteria::shock_drift_tolerance(double shock_x, double cell) const {
+  return std::max(shock_drift_tol * std::abs(shock_nose_x - shock_x), kShockDriftCellsFloor * cell);
+}
+
 SteadyCriteria SteadyCriteria::iteration_windows(const scene::CfdParams& p,
                                                  long steps_per_flow_through) {
   SteadyCriteria c = time_accurate(p);
@@ -188,8 +196,11 @@ SteadyState::ShockGate SteadyState::shock_gate() {
   if (rows_.size() < n)
     return {false, fmt::format("shock position over {} of {} rows", rows_.size(), n)};
   std::vector<double> x;
-  for (const HistoryRow& r : window(n))
+  double cell = 0.0;  // the coarsest cell the shock sat in over the window
+  for (const HistoryRow& r : window(n)) {
     if (std::isfinite(r.shock_x)) x.push_back(r.shock_x);
+    if (std::isfinite(r.shock_cell)) cell = std::max(cell, r.shock_cell);
+  }
   const std::size_t measured = x.size();
   // No shock ahead of the nose in the whole window: one attached to a
   // pointed nose, nothing on the line to drift.
@@ -202,15 +213,7 @@ SteadyState::ShockGate SteadyState::shock_gate() {
   // Standard error of the slope, with the two fitted parameters taken off.
   const double se = std::sqrt(line.sse / static_cast<double>(n - 2) / line.stt);
   rows_.back().shock_drift = slope;
-  // A shock behind the nose (a body whose nose is not foremost) is held to
-  // its distance's size all the same. A standoff of a few cells is not
-  // resolved to a fraction of itself: the tolerance is never below
-  // kShockDriftCellsFloor cells per flow-through.
-  double cell = 0.0;
-  for (const HistoryRow& r : window(n))
-    if (std::isfinite(r.shock_cell)) cell = std::max(cell, r.shock_cell);
-  const double tol = std::max(c_.shock_drift_tol * std::abs(c_.shock_nose_x - line.mean),
-                              kShockDriftCellsFloor * cell);
+  const double tol = c_.shock_drift_tolerance(line.mean, cell);
   const bool moving = std::abs(slope) > tol && std::abs(slope) > kShockDriftSignificance * se;
   const char* per = c_.clock == SteadyClock::iterations ? "iteration flow-through" : "flow-through";
   return {!moving,

@@ -58,6 +58,9 @@ struct SteadyCriteria {
   // (kShockDriftPerStandoff) and steady_tol at most kBowShockSteadyTol;
   // otherwise unchanged.
   SteadyCriteria with_shock_drift_gate(const scene::Scene& s) const;
+  // The gate's drift tolerance (scene units per flow-through unit of
+  // progress) for a shock at shock_x in cells of size `cell`.
+  double shock_drift_tolerance(double shock_x, double cell) const;
 };
 
 // Rows over which the shock's drift is fitted (2 flow-throughs at the default

@@ -176,18 +176,18 @@ TEST(HardCases, DiscAtMach8FinishesSteadyOnTadmorFromTheStart) {
 
 namespace {
 // A steady bow shock's fitted drift on the stagnation line, per
-// flow-through, over the gate's tolerance (kShockDriftPerStandoff of the
-// standoff, at least kShockDriftCellsFloor of the shock's cell): the gate
-// passes a drift within it or one insignificant against the shock's flicker
-// between cells, which on these coarse grids (cells of 0.1-2 radii) may be
-// larger; kHeldStill bounds both, and a shock still approaching as the disc
-// references did (1-3% of the standoff on 16-49 cells: 5-15 tolerances) fails.
+// flow-through, over the gate's tolerance for the scene (the standoff's, at
+// least a fraction of the shock's cell): the gate passes a drift within it or
+// one insignificant against the shock's flicker between cells, which on these
+// coarse grids (cells of 0.1-2 radii) may be larger; kHeldStill bounds both,
+// and a shock still approaching as the disc references did (1-3% of the
+// standoff on 16-49 cells: 5-15 tolerances) fails.
 constexpr double kHeldStill = 5.0;
 
-double drift_over_tolerance(const std::map<std::string, double>& row, double nose_x) {
-  const double tol = std::max(cfd::kShockDriftPerStandoff * std::abs(nose_x - row.at("shock_x")),
-                              cfd::kShockDriftCellsFloor * row.at("shock_cell"));
-  return std::abs(row.at("shock_drift")) / tol;
+double drift_over_tolerance(const scene::Scene& s, const std::map<std::string, double>& row) {
+  const cfd::SteadyCriteria c = cfd::SteadyCriteria::time_accurate(s.cfd).with_shock_drift_gate(s);
+  return std::abs(row.at("shock_drift")) /
+         c.shock_drift_tolerance(row.at("shock_x"), row.at("shock_cell"));
 }
 
 // The last row of a case's history.csv, by column name.
@@ -228,7 +228,7 @@ TEST(HardCases, BowShockProbeFindsTheDiscStandoffNearBillig) {
   RecordProperty("standoff_radii", std::to_string(standoff));
   EXPECT_NEAR(standoff, billig, kDiscM4StandoffTol * billig) << "standoff " << standoff << " R";
   // Steady means the shock held still too.
-  EXPECT_LE(drift_over_tolerance(row, -0.5), kHeldStill);
+  EXPECT_LE(drift_over_tolerance(s, row), kHeldStill);
 }
 
 TEST(HardCases, NearSonicDiscSettlesWithoutFallbackInTheTimeItIsGiven) {
@@ -256,8 +256,7 @@ TEST(HardCases, NearSonicDiscSettlesWithoutFallbackInTheTimeItIsGiven) {
   EXPECT_LT(r.final_density_change_l2, s.cfd.steady_tol);
   EXPECT_LT(r.final_force_change, s.cfd.force_tol);
   const auto row = last_history_row(r.history_csv);
-  constexpr double kRadius = 0.5;  // the body length of a disc
-  EXPECT_LE(drift_over_tolerance(row, -kRadius), kHeldStill) << "the shock still creeps";
+  EXPECT_LE(drift_over_tolerance(s, row), kHeldStill) << "the shock still creeps";
   // A scene that states its end_time keeps it.
   EXPECT_EQ(scene::parse_scene(
                 "body: {kind: disc, radius: 0.5}\nfreestream: {mach: 1.3}\ncfd: {end_time: 10}\n")
@@ -308,7 +307,7 @@ TEST(HardCases, NearSonicDiscSettlesOnAGridClusteredAtItsBowShock) {
   EXPECT_TRUE(r.fallback.empty()) << r.fallback;
   EXPECT_EQ(r.outflow, "subsonic");
   EXPECT_TRUE(r.steady_state_reached);
-  EXPECT_LE(drift_over_tolerance(last_history_row(r.history_csv), -kRadius), kHeldStill);
+  EXPECT_LE(drift_over_tolerance(s, last_history_row(r.history_csv)), kHeldStill);
   expect_finite_positive(cfd::resample_to_lattice(s, d + "/case", 100, 100));
 }
 
@@ -340,7 +339,7 @@ TEST(HardCases, DetachedWedgeWithItsBaseInsideHoldsItsShockSteady) {
   EXPECT_NE(scene::read_file(u.dir + "/case/system/fvSchemes").find("fluxScheme      Tadmor;"),
             std::string::npos);
   const auto row = last_history_row(u.result.history_csv);
-  EXPECT_LE(drift_over_tolerance(row, 0.0), kHeldStill);
+  EXPECT_LE(drift_over_tolerance(u.scene, row), kHeldStill);
   const double standoff = -row.at("shock_x");  // apex at x = 0, wedge length 1
   RecordProperty("standoff_lengths", std::to_string(standoff));
   EXPECT_GT(standoff, 0.0);

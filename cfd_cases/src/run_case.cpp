@@ -54,6 +54,19 @@ void remove_incomplete_times(const std::string& case_dir) {
       if (!fs::exists(d + "/" + t.name + "/rho")) fs::remove_all(d + "/" + t.name);
 }
 
+// The template's timePrecision (system/controlDict). On a start OpenFOAM
+// formats the time it reads from uniform/time at this precision and looks for
+// the directory of that name, while the solver that wrote a time may have
+// raised its precision to name it; so a state a run continues from is
+// copied in under a name written at this precision.
+constexpr int kTemplateTimePrecision = 10;
+
+void place_state(const std::string& state_dir, const std::string& cdir) {
+  const double t = std::stod(fs::path(state_dir).filename().string());
+  fs::copy(state_dir, fmt::format("{}/{:.{}g}", cdir, t, kTemplateTimePrecision),
+           fs::copy_options::recursive);
+}
+
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -331,6 +344,7 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   const CaseSettings& cs = sched.settings;
   const std::string& cdir = paths.case_dir;
   write_case(s, paths.mesh, mesh, cdir, cs);
+  if (!o.continue_from.empty()) place_state(o.continue_from, cdir);
 
   CaseResult r;
   r.case_dir = cdir;
@@ -345,7 +359,11 @@ CaseResult run_case(const scene::Scene& s, const std::string& mesh_dir, const st
   r.limiter = limiter(s);
   r.wall_pressure_ratio = scene::kNaN;
 
-  if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", {"-force"}).cpu_seconds;
+  // A continued run needs only the state it continues from on the ranks.
+  const std::vector<std::string> decompose =
+      o.continue_from.empty() ? std::vector<std::string>{"-force"}
+                              : std::vector<std::string>{"-force", "-latestTime"};
+  if (cs.np > 1) r.cpu_seconds += run_foam(cdir, "decomposePar", decompose).cpu_seconds;
   const CaseReader reader(s, cdir, cs.np);
   const auto t0 = Clock::now();
   FoamProcess solver(cdir, "rhoCentralFoam", {}, cs.np);

@@ -138,7 +138,7 @@ void replay(const std::string& case_dir, const Options& o) {
     old_c = cfd::SteadyCriteria::iteration_windows(
         s.cfd, std::lround(static_cast<double>(last->second) / (last->first / rec.norm_time)));
   }
-  cfd::SteadyState old_rule(old_c), new_rule(old_c.with_shock_drift_gate(s));
+  cfd::SteadyState old_rule(old_c), new_rule(old_c.for_body(s));
   const scene::BodyGeometry g = scene::make_body(*s.body);
   std::optional<cfd::Snapshot> prev;
   std::vector<double> row_time;

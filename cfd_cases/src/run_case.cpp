@@ -199,7 +199,7 @@ class SolverWatch {
         progress_("rhoCentralFoam " + s.name, s.cfd.end_time, "flow-throughs"),
         rule_((sched.settings.lts ? SteadyCriteria::iteration_windows(s.cfd, sched.lts_steps)
                                   : SteadyCriteria::time_accurate(s.cfd))
-                  .with_shock_drift_gate(s)),
+                  .for_body(s)),
         rho_inf_(rho_inf),
         norm_time_(sched.norm_time),
         t0_(t0) {}

@@ -80,7 +80,7 @@ SteadyCriteria SteadyCriteria::time_accurate(const scene::CfdParams& p) {
   return c;
 }
 
-SteadyCriteria SteadyCriteria::with_shock_drift_gate(const scene::Scene& s) const {
+SteadyCriteria SteadyCriteria::for_body(const scene::Scene& s) const {
   SteadyCriteria c = *this;
   if (!scene::shock_may_stand_off(s)) {
     c.shock_drift_tol = 0.0;

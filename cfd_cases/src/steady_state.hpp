@@ -54,10 +54,10 @@ struct SteadyCriteria {
   // progress counted in iterations, steps_per_flow_through per flow-through.
   static SteadyCriteria iteration_windows(const scene::CfdParams& p, long steps_per_flow_through);
   // These criteria for the scene's body: where its shock may stand off
-  // (scene::shock_may_stand_off) with the drift gate on
+  // (scene::shock_may_stand_off), the bow-shock rule: the drift gate on
   // (kShockDriftPerStandoff) and steady_tol at most kBowShockSteadyTol;
-  // otherwise unchanged.
-  SteadyCriteria with_shock_drift_gate(const scene::Scene& s) const;
+  // otherwise unchanged (the gate off).
+  SteadyCriteria for_body(const scene::Scene& s) const;
   // The gate's drift tolerance (scene units per flow-through unit of
   // progress) for a shock at shock_x in cells of size `cell`.
   double shock_drift_tolerance(double shock_x, double cell) const;

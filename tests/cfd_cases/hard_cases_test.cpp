@@ -221,7 +221,7 @@ namespace {
 constexpr double kHeldStill = 5.0;
 
 double drift_over_tolerance(const scene::Scene& s, const std::map<std::string, double>& row) {
-  const cfd::SteadyCriteria c = cfd::SteadyCriteria::time_accurate(s.cfd).with_shock_drift_gate(s);
+  const cfd::SteadyCriteria c = cfd::SteadyCriteria::time_accurate(s.cfd).for_body(s);
   return std::abs(row.at("shock_drift")) /
          c.shock_drift_tolerance(row.at("shock_x"), row.at("shock_cell"));
 }

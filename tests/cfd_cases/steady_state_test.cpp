@@ -251,7 +251,7 @@ scene::Scene disc_scene() {
 }
 
 cfd::SteadyCriteria blunt_criteria() {
-  return cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(disc_scene());
+  return cfd::SteadyCriteria::time_accurate(defaults()).for_body(disc_scene());
 }
 
 // The noise-floor plateau of NoisyPlateauAboveTheToleranceIsSteadyAtTheNoiseFloor
@@ -271,26 +271,25 @@ std::vector<cfd::HistoryRow> plateau_with_shock(int n, const std::function<doubl
 
 TEST(ShockDriftGate, OnForBodiesWhoseShockMayStandOffOnly) {
   const auto base = cfd::SteadyCriteria::time_accurate(defaults());
-  const auto disc = base.with_shock_drift_gate(disc_scene());
+  const auto disc = base.for_body(disc_scene());
   EXPECT_DOUBLE_EQ(disc.shock_drift_tol, cfd::kShockDriftPerStandoff);
   EXPECT_DOUBLE_EQ(disc.shock_nose_x, kNoseX);
   // A bow shock's density change must get under the tighter of the two.
   EXPECT_DOUBLE_EQ(disc.steady_tol, cfd::kBowShockSteadyTol);
   scene::CfdParams tight = defaults();
   tight.steady_tol = 1e-3;
-  EXPECT_DOUBLE_EQ(
-      cfd::SteadyCriteria::time_accurate(tight).with_shock_drift_gate(disc_scene()).steady_tol,
-      1e-3);
+  EXPECT_DOUBLE_EQ(cfd::SteadyCriteria::time_accurate(tight).for_body(disc_scene()).steady_tol,
+                   1e-3);
   // An attached wedge (M3, 10 deg) is judged as before: no gate, its tolerance.
   const scene::Scene attached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
-  EXPECT_EQ(base.with_shock_drift_gate(attached).shock_drift_tol, 0.0);
-  EXPECT_EQ(base.with_shock_drift_gate(attached).steady_tol, base.steady_tol);
+  EXPECT_EQ(base.for_body(attached).shock_drift_tol, 0.0);
+  EXPECT_EQ(base.for_body(attached).steady_tol, base.steady_tol);
   // Beyond the maximum deflection (23 deg at Mach 2) the wedge's shock stands
   // off its apex (the nose, x = 0).
   const scene::Scene detached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 30, length: 2}\nfreestream: {mach: 2}\n");
-  const auto wedge = base.with_shock_drift_gate(detached);
+  const auto wedge = base.for_body(detached);
   EXPECT_DOUBLE_EQ(wedge.shock_drift_tol, cfd::kShockDriftPerStandoff);
   EXPECT_DOUBLE_EQ(wedge.shock_nose_x, 0.0);
 }
@@ -344,8 +343,7 @@ TEST(ShockDriftGate, ABowShockPausedAboveItsDensityToleranceIsNotSteady) {
   // The same history on an attached wedge is steady from the first rows.
   const scene::Scene attached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
-  cfd::SteadyState wedge_rule(
-      cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(attached));
+  cfd::SteadyState wedge_rule(cfd::SteadyCriteria::time_accurate(defaults()).for_body(attached));
   EXPECT_LT(steady_at(wedge_rule, rows), first_under);
 }
 
@@ -414,8 +412,7 @@ TEST(ShockDriftGate, AttachedWedgeIsJudgedAsBefore) {
   const scene::Scene attached = scene::parse_scene(
       "name: w\nbody: {kind: wedge, angle_deg: 10, length: 1}\nfreestream: {mach: 3}\n");
   const auto rows = plateau_with_shock(30, [](int k) { return kShockX - k; });
-  cfd::SteadyState rule(
-      cfd::SteadyCriteria::time_accurate(defaults()).with_shock_drift_gate(attached));
+  cfd::SteadyState rule(cfd::SteadyCriteria::time_accurate(defaults()).for_body(attached));
   EXPECT_EQ(steady_at(rule, rows), 6);
   EXPECT_EQ(rule.why().find("shock"), std::string::npos) << rule.why();
 }

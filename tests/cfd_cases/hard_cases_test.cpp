@@ -102,23 +102,41 @@ TEST(HardCases, StronglySkewedBandKeepsTheWallPressure) {
   EXPECT_NEAR(r.wall_pressure_ratio, exact, kSkewedWallTol * exact);
 }
 
+// The Apollo start above with the Kurganov flux named, which diverges at
+// about 1.1 flow-throughs, written every `write_interval` flow-throughs and
+// run with the fallback in DIR/case (the scene's grid in DIR/mesh).
+struct SceneRun {
+  scene::Scene scene;
+  cfd::CaseResult result;
+};
+SceneRun diverging_apollo_run(const std::string& d, const std::string& write_interval) {
+  const scene::Scene s = apollo_on_coarse_grid(
+      d + "/mesh", "{end_time: 3, flux_scheme: Kurganov, write_interval: " + write_interval + "}");
+  return {s, cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {})};
+}
+
+// The fallback's result when the run was made again from the initial state
+// with the robust settings throughout.
+void expect_robust_from_the_start(const cfd::CaseResult& r) {
+  EXPECT_EQ(r.fallback.rfind(
+                "flux_scheme Tadmor, limiter Minmod, max_co 0.15 (after: the solution diverged", 0),
+            0u)
+      << r.fallback;
+  EXPECT_EQ(r.flux_scheme, "Tadmor");
+}
+
 }  // namespace
 
 TEST(HardCases, DivergingRunRestartsOnceWithTheRobustSettings) {
-  // The Apollo start above with the Kurganov flux diverges at about 1.1
-  // flow-throughs, here before any state is written (one every 1.5): with no
+  // The Kurganov start diverges here before any state is written (one
+  // every 1.5 flow-throughs): with no
   // state to bridge from, the fallback restarts it from the initial state
   // with Tadmor, Minmod and half the Courant number, says so in the result
   // and summary.json, and counts the failed attempt's CPU and steps. With
   // cfd.fallback false the divergence is the run's end.
   const std::string d = cfd_test::scratch_dir();
-  const scene::Scene s = apollo_on_coarse_grid(
-      d + "/mesh", "{end_time: 3, flux_scheme: Kurganov, write_interval: 1.5}");
-  const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
-  EXPECT_EQ(r.fallback.rfind(
-                "flux_scheme Tadmor, limiter Minmod, max_co 0.15 (after: the solution diverged", 0),
-            0u)
-      << r.fallback;
+  const auto [s, r] = diverging_apollo_run(d, "1.5");
+  expect_robust_from_the_start(r);
   EXPECT_TRUE(std::filesystem::exists(d + "/case/log.rhoCentralFoam.diverged"));
   EXPECT_FALSE(std::filesystem::exists(d + "/case/log.rhoCentralFoam.bridge"));
   EXPECT_GT(r.sim_time, 0.0);
@@ -140,14 +158,8 @@ TEST(HardCases, ABridgeThatDivergesTooEndsInTheRunFromTheInitialState) {
   // settings throughout. Every attempt's log and history is kept in the case,
   // its cost counted, and nothing is left beside the case.
   const std::string d = cfd_test::scratch_dir();
-  const scene::Scene s = apollo_on_coarse_grid(
-      d + "/mesh", "{end_time: 3, flux_scheme: Kurganov, write_interval: 0.02}");
-  const cfd::CaseResult r = cfd::run_case_with_fallback(s, d + "/mesh", d + "/case", {});
-  EXPECT_EQ(r.fallback.rfind(
-                "flux_scheme Tadmor, limiter Minmod, max_co 0.15 (after: the solution diverged", 0),
-            0u)
-      << r.fallback;
-  EXPECT_EQ(r.flux_scheme, "Tadmor");
+  const auto [s, r] = diverging_apollo_run(d, "0.02");
+  expect_robust_from_the_start(r);
   for (const char* kept :
        {"log.rhoCentralFoam.diverged", "history.diverged.csv", "log.rhoCentralFoam.bridge",
         "history.bridge.csv", "log.rhoCentralFoam.restart-diverged"})

@@ -88,7 +88,7 @@ inline constexpr double kBridgeFlowThroughs = 1.0;
 // fallback and counts every attempt's CPU and wall seconds and steps; the
 // diverged attempt's log and history stay in the case as
 // log.rhoCentralFoam.diverged and history.diverged.csv (the bridge's as
-// .bridge).
+// .bridge, a restart that diverged as .restart-diverged).
 CaseResult run_case_with_fallback(const scene::Scene& s, const std::string& mesh_dir, const std::string& case_dir,
                                   const CaseOptions& o);
 // The scene's cfd settings made robust; `what` describes the change.

@@ -84,13 +84,10 @@ int ranks(const scene::Scene& s, const CaseOptions& o) {
   return o.np > 1 ? o.np : s.cfd.np;
 }
 
-// The written times of the case that hold a complete state, oldest first.
-std::vector<TimeDir> complete_times(const std::string& case_dir, int np) {
-  const std::string where = np > 1 ? case_dir + "/processor0" : case_dir;
-  std::vector<TimeDir> out;
-  for (const TimeDir& t : time_dirs(where))
-    if (fs::exists(where + "/" + t.name + "/rho")) out.push_back(t);
-  return out;
+// The written times of a case that run_case left, oldest first (it removes
+// incomplete ones, however the solver ended).
+std::vector<TimeDir> written_times(const std::string& case_dir, int np) {
+  return time_dirs(np > 1 ? case_dir + "/processor0" : case_dir);
 }
 
 // The case's time `t` (reconstructed when parallel) copied aside; its path.
@@ -129,7 +126,7 @@ std::optional<CaseResult> bridge(const scene::Scene& s, const std::string& mesh_
                                  const std::string& case_dir, const CaseOptions& o, Aside& aside,
                                  Spent& spent, std::string& what) {
   const int np = ranks(s, o);
-  const std::vector<TimeDir> times = complete_times(case_dir, np);
+  const std::vector<TimeDir> times = written_times(case_dir, np);
   const std::optional<double> per_time = flow_throughs_per_time(case_dir);
   if (times.size() < 2 || !per_time) return std::nullopt;
   const TimeDir& before = times[times.size() - 2];
@@ -149,7 +146,7 @@ std::optional<CaseResult> bridge(const scene::Scene& s, const std::string& mesh_
   spent.add(b);
   aside.keep_attempt(case_dir, "bridge");
 
-  const std::vector<TimeDir> bridged = complete_times(case_dir, 1);
+  const std::vector<TimeDir> bridged = written_times(case_dir, 1);
   if (bridged.empty()) return std::nullopt;
   CaseOptions own = o;
   own.continue_from = set_aside(case_dir, bridged.back(), 1, aside, spent);

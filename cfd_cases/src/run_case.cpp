@@ -211,8 +211,7 @@ class SolverWatch {
       if (exited) remove_incomplete_times(cdir_);
       log_.update();
       if (log_.diverged()) {
-        solver_.terminate();
-        solver_.wait();
+        end_solver();
         fail_diverged("the solution diverged (" + log_.divergence() + ")", solver_.log_path(),
                       solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
       }
@@ -236,6 +235,14 @@ class SolverWatch {
   bool user_stop() const { return user_stop_; }
 
  private:
+  // The solver ended on a failure: the case is kept, with only complete
+  // states in it (a restart continues from them).
+  void end_solver() {
+    solver_.terminate();
+    solver_.wait();
+    remove_incomplete_times(cdir_);
+  }
+
   void request_stop() {
     if (stop_requested_) return;
     set_control(cdir_, "stopAt", "noWriteNow");
@@ -252,12 +259,10 @@ class SolverWatch {
       try {
         snap = reader_.read(t);
       } catch (const NonPhysicalState& e) {
-        solver_.terminate();
-        solver_.wait();
+        end_solver();
         fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
       } catch (const scene::RunError& e) {
-        solver_.terminate();
-        solver_.wait();
+        end_solver();
         fail_run(e.what(), solver_.log_path());
       }
       if (prev_) compare_with_previous(t, snap);

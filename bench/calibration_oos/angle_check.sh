@@ -20,7 +20,7 @@ table=$1; out=$2; shift 2
 bin=${BIN:-build/bin}
 mkdir -p "$out"
 source "$(dirname "$0")/../json_value.sh"
-# mach angle class: 1 inside the training ranges (Mach 2.5-6, 8-20 deg),
+# mach angle class: 1 inside the training ranges (Mach 2.5-6, 8-26 deg),
 # 2 a case study, 0 outside the training ranges
 default_wedges="2.8 11 1
 3.2 18 1
@@ -32,7 +32,8 @@ default_wedges="2.8 11 1
 5.0 20 2
 2.2 9 0
 3.8 6 0
-4.0 22 0"
+4.0 22 1
+3.5 30 0"
 wedges=${WEDGES:-$default_wedges}
 # Written aside and moved in at the end: a stopped or failed rerun leaves the
 # last finished runs.txt / summary.txt in place.

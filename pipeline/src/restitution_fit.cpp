@@ -36,6 +36,9 @@ std::vector<double> basis(RestitutionModel m, double mach, double angle_deg) {
       return {1.0, std::log(mach), 1.0 / angle_deg};
     case RestitutionModel::log_mach2_inverse_angle:
       return {1.0, std::log(mach), std::log(mach) * std::log(mach), 1.0 / angle_deg};
+    case RestitutionModel::log_mach2_inverse_angle_angle2:
+      return {1.0, std::log(mach), std::log(mach) * std::log(mach), 1.0 / angle_deg,
+              angle_deg * angle_deg};
   }
   return {};
 }
@@ -120,6 +123,8 @@ std::string model_key(RestitutionModel m) {
       return "log_mach_inverse_angle";
     case RestitutionModel::log_mach2_inverse_angle:
       return "log_mach2_inverse_angle";
+    case RestitutionModel::log_mach2_inverse_angle_angle2:
+      return "log_mach2_inverse_angle_angle2";
   }
   return "";
 }
@@ -140,6 +145,8 @@ std::string model_formula(RestitutionModel m) {
       return "e = c0 + c1*ln(M) + c2/theta_deg";
     case RestitutionModel::log_mach2_inverse_angle:
       return "e = c0 + c1*ln(M) + c2*ln(M)^2 + c3/theta_deg";
+    case RestitutionModel::log_mach2_inverse_angle_angle2:
+      return "e = c0 + c1*ln(M) + c2*ln(M)^2 + c3/theta_deg + c4*theta_deg^2";
   }
   return "";
 }
@@ -158,7 +165,8 @@ std::size_t parameter_count(RestitutionModel m) {
 bool uses_angle(RestitutionModel m) {
   return m == RestitutionModel::inverse_mach2_angle || m == RestitutionModel::log_mach_angle ||
          m == RestitutionModel::log_mach_inverse_angle ||
-         m == RestitutionModel::log_mach2_inverse_angle;
+         m == RestitutionModel::log_mach2_inverse_angle ||
+         m == RestitutionModel::log_mach2_inverse_angle_angle2;
 }
 
 double RestitutionFit::evaluate(double mach, double angle_deg) const {

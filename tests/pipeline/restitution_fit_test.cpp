@@ -153,9 +153,9 @@ TEST(CalibrationTraining, DefaultSetAvoidsTheCaseStudies) {
   const auto cases = pipeline::wedge_points(wedges);
   ASSERT_GE(cases.size(), 3u);  // M3/10, M4/15, M5/20
   const auto train = pipeline::training_wedges(o.machs, o.angles_deg, 1.4, cases);
-  // Seven Mach numbers x five deflections, all attached; the grid passes
+  // Seven Mach numbers x seven deflections, all attached; the grid passes
   // through M5/20, which stays out.
-  EXPECT_EQ(train.size(), 34u);
+  EXPECT_EQ(train.size(), 48u);
   for (const auto& t : train)
     for (const auto& c : cases)
       EXPECT_FALSE(pipeline::same_wedge(t, c)) << t.mach << " / " << t.angle_deg;
@@ -204,4 +204,30 @@ TEST(RestitutionFit, ACurvatureInMachIsRecoveredAndChosenOnASevenMachGrid) {
             RestitutionModel::log_mach2_inverse_angle);
   EXPECT_EQ(pipeline::parameter_count(RestitutionModel::log_mach2_inverse_angle), 4u);
   EXPECT_TRUE(pipeline::uses_angle(RestitutionModel::log_mach2_inverse_angle));
+}
+
+TEST(RestitutionFit, AMinimumInTheDeflectionIsRecoveredAndChosenOnAWideGrid) {
+  // Crossings that fall as 1/theta and turn up again towards detachment (as
+  // the 8-26 deg training grid's do), noise 0.0002: theta^2 on top of
+  // (ln M)^2 + 1/theta follows the turn, 1/theta alone cannot, and out of
+  // sample the richer form wins.
+  const auto law = [](double m, double a) {
+    const double l = std::log(m);
+    return 0.98 + 0.003 * l - 0.012 * l * l + 0.1 / a + 1.2e-5 * a * a;
+  };
+  std::vector<RestitutionPoint> pts;
+  int i = 0;
+  for (const double m : {2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0})
+    for (const double a : {8.0, 11.0, 14.0, 17.0, 20.0, 23.0, 26.0})
+      pts.push_back({m, a, law(m, a) + (i++ % 2 == 0 ? 1.0 : -1.0) * 0.0002, 0.001});
+  const auto c = pipeline::choose_restitution_model(pts);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_EQ(c->fit().model, RestitutionModel::log_mach2_inverse_angle_angle2);
+  constexpr double kLawTolerance = 3e-4;
+  EXPECT_NEAR(c->fit().evaluate(3.0, 24.5), law(3.0, 24.5), kLawTolerance);
+  EXPECT_NEAR(c->fit().evaluate(5.2, 9.5), law(5.2, 9.5), kLawTolerance);
+  EXPECT_EQ(pipeline::model_from_key("log_mach2_inverse_angle_angle2"),
+            RestitutionModel::log_mach2_inverse_angle_angle2);
+  EXPECT_EQ(pipeline::parameter_count(RestitutionModel::log_mach2_inverse_angle_angle2), 5u);
+  EXPECT_TRUE(pipeline::uses_angle(RestitutionModel::log_mach2_inverse_angle_angle2));
 }

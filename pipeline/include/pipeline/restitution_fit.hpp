@@ -20,6 +20,10 @@ namespace pipeline {
 // (ln M)^2 with 1/theta: a grid of seven Mach numbers resolves the crossings'
 // curvature in Mach number that three or four cannot (34 training wedges:
 // leave-one-out angle error 0.35 deg against 0.48 for ln M + 1/theta).
+// Beyond 20 deg the crossings turn up again as the shock nears detachment
+// (M3: e 0.9825 at 20 deg, 0.9830 at 23, 0.9856 at 26), which 1/theta alone
+// cannot follow: the last form adds theta^2, giving e a minimum in the
+// deflection.
 enum class RestitutionModel {
   constant,
   inverse_mach2,
@@ -27,7 +31,8 @@ enum class RestitutionModel {
   inverse_mach2_angle,
   log_mach_angle,
   log_mach_inverse_angle,
-  log_mach2_inverse_angle
+  log_mach2_inverse_angle,
+  log_mach2_inverse_angle_angle2
 };
 inline constexpr RestitutionModel kRestitutionModels[] = {
     RestitutionModel::constant,
@@ -36,7 +41,8 @@ inline constexpr RestitutionModel kRestitutionModels[] = {
     RestitutionModel::inverse_mach2_angle,
     RestitutionModel::log_mach_angle,
     RestitutionModel::log_mach_inverse_angle,
-    RestitutionModel::log_mach2_inverse_angle};
+    RestitutionModel::log_mach2_inverse_angle,
+    RestitutionModel::log_mach2_inverse_angle_angle2};
 
 std::string model_key(RestitutionModel m);      // "inverse_mach2", as in the table
 std::string model_formula(RestitutionModel m);  // "e = c0 + c1/M^2", for people

@@ -32,13 +32,16 @@ struct CalibrateOptions {
   std::string out_dir;
   // Training wedges. Default: generated on the machs x angles_deg grid
   // (attached at gamma 1.4, case studies left out) with every other scene key
-  // at its default, as the case studies have them. Seven Machs x five angles:
-  // the coarser 4 x 3 grid missed a bend of e in ln M, and its table left 16
-  // unseen wedges 0.48 deg RMS off against 0.32 with this one (2.5x the CPU;
-  // docs/calibration.md, "Result (2026-12-05, shipped)").
+  // at its default, as the case studies have them. Seven Machs: the coarser
+  // 4 x 3 grid missed a bend of e in ln M, and its table left 16 unseen wedges
+  // 0.48 deg RMS off against 0.32 with seven (docs/calibration.md, "Result
+  // (2026-12-05, shipped)"). Deflections up to 26 deg: beyond 20 the
+  // crossings turn up towards detachment, and a table trained only to 20 put
+  // wedges at 21-26.5 deg 1.2 deg RMS off (docs/calibration.md, "Deflections
+  // up to 26 deg").
   std::vector<std::string> scenes;
   std::vector<double> machs{2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 6.0};
-  std::vector<double> angles_deg{8.0, 11.0, 14.0, 17.0, 20.0};
+  std::vector<double> angles_deg{8.0, 11.0, 14.0, 17.0, 20.0, 23.0, 26.0};
   // The crossings lie near 0.96-0.99, where angle(e) is strongly convex
   // (M2.5/14: 32 deg at 0.98, 49 at 1): the sweep is coarse and then
   // `refinements` runs bisect the bracketing interval (or extend the sweep

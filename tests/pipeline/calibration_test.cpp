@@ -294,6 +294,31 @@ TEST(Calibration, BluntBodiesKeepTheLawTheirBowBlockWasMeasuredUnder) {
   }
 }
 
+TEST(Calibration, AWedgeBeyondItsMaximumDeflectionTakesTheBluntLaw) {
+  // The wedge fit matches attached angles; a detached wedge has none, so it
+  // takes the blunt bodies' law like a disc, and the run says its standoff
+  // is uncalibrated.
+  auto t = fitted_table();
+  t.bow_shock = pipeline::BowShockScatter{};
+  t.bow_shock->relative_rms = 0.17;
+  t.bow_shock->restitution_law = pipeline::RestitutionFit{
+      pipeline::RestitutionModel::log_mach, {1.014, -0.028}, 0.003, 0.0028};
+  const auto path = (std::filesystem::temp_directory_path() / "calib_detached.yaml").string();
+  pipeline::write_calibration(t, path);
+  auto detached = scene::parse_scene("body: {kind: wedge, angle_deg: 36}\nfreestream: {mach: 3}\n");
+  const auto applied = pipeline::apply_calibration(detached, path);
+  EXPECT_NEAR(detached.granular.restitution, 1.014 - 0.028 * std::log(3.0), 1e-6);
+  EXPECT_NE(applied.note.find("beyond the gas's maximum deflection"), std::string::npos)
+      << applied.note;
+  EXPECT_NE(applied.note.find("standoff's error is unmeasured"), std::string::npos);
+  EXPECT_EQ(applied.note.find("deflection lies outside"), std::string::npos);  // no angle used
+  // Just below the maximum deflection (34.07 deg at Mach 3) the wedge fit serves.
+  auto attached = scene::parse_scene("body: {kind: wedge, angle_deg: 33}\nfreestream: {mach: 3}\n");
+  pipeline::apply_calibration(attached, path);
+  EXPECT_NEAR(attached.granular.restitution,
+              std::min(*pipeline::interpolate_restitution(t, 3, 33), 1.0), 1e-6);
+}
+
 TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
   nlohmann::json c = {
       {"model", "inverse_mach2"},

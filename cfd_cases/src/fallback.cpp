@@ -3,9 +3,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "cfd/foam_reader.hpp"
 #include "cfd/run_case.hpp"
@@ -101,41 +99,25 @@ std::string set_aside(const std::string& case_dir, const TimeDir& t, int np, con
   return to;
 }
 
-// Flow-throughs per unit of the solver's (pseudo-)time, from the history a
-// run wrote (time and flow_throughs, its first two columns).
-std::optional<double> flow_throughs_per_time(const std::string& case_dir) {
-  std::ifstream in(case_dir + "/history.csv");
-  std::string line, last;
-  std::getline(in, line);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::istringstream row(last);
-  double time = 0.0, flow_throughs = 0.0;
-  char comma = 0;
-  if (!(row >> time >> comma >> flow_throughs) || time <= 0.0 || flow_throughs <= 0.0)
-    return std::nullopt;
-  return flow_throughs / time;
-}
-
 // The bridge: from the state written a write interval before the last one
 // the divergence left (the last may already carry what diverged),
 // kBridgeFlowThroughs with the robust settings, never judged steady, then
 // the scene's own settings from where the bridge ended. nullopt where fewer
 // than two states were written; Diverged where a stage diverges.
 std::optional<CaseResult> bridge(const scene::Scene& s, const std::string& mesh_dir,
-                                 const std::string& case_dir, const CaseOptions& o, Aside& aside,
-                                 Spent& spent, std::string& what) {
+                                 const std::string& case_dir, const CaseOptions& o,
+                                 double time_per_flow_through, Aside& aside, Spent& spent,
+                                 std::string& what) {
   const int np = ranks(s, o);
   const std::vector<TimeDir> times = written_times(case_dir, np);
-  const std::optional<double> per_time = flow_throughs_per_time(case_dir);
-  if (times.size() < 2 || !per_time) return std::nullopt;
+  if (times.size() < 2 || !(time_per_flow_through > 0.0)) return std::nullopt;
   const TimeDir& before = times[times.size() - 2];
   const std::string state = set_aside(case_dir, before, np, aside, spent);
 
   scene::Scene robust = s;
   std::string settings;
   robust.cfd = robust_settings(s.cfd, settings);
-  const double from = before.time * *per_time;
+  const double from = before.time / time_per_flow_through;
   robust.cfd.end_time = from + kBridgeFlowThroughs;
   robust.cfd.min_time = robust.cfd.end_time + kBridgeFlowThroughs;  // the bridge is not the result
   CaseOptions bridge_options = o;
@@ -192,7 +174,7 @@ CaseResult run_case_with_fallback(const scene::Scene& s, const std::string& mesh
     std::optional<CaseResult> r;
     std::string how;
     try {
-      r = bridge(s, mesh_dir, case_dir, o, aside, spent, how);
+      r = bridge(s, mesh_dir, case_dir, o, first.time_per_flow_through, aside, spent, how);
     } catch (const Diverged& again) {
       spent.add(again);
       aside.keep_attempt(case_dir, "restart-diverged");

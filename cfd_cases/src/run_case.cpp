@@ -92,9 +92,9 @@ Diagnosis diagnose(int rc, const std::string& log_path) {
 }
 
 // A divergence is thrown as Diverged, so that a caller may restart.
-[[noreturn]] void fail_diverged(const std::string& what, const std::string& log, double cpu, double wall,
-                                long steps) {
-  throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps);
+[[noreturn]] void fail_diverged(const std::string& what, const std::string& log, double cpu,
+                                double wall, long steps, double norm_time) {
+  throw Diverged(what + "; see " + log + ":" + log_tail(log), cpu, wall, steps, norm_time);
 }
 
 }  // namespace
@@ -213,7 +213,7 @@ class SolverWatch {
       if (log_.diverged()) {
         end_solver();
         fail_diverged("the solution diverged (" + log_.divergence() + ")", solver_.log_path(),
-                      solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
+                      solver_.cpu_seconds(), seconds_since(t0_), log_.steps(), norm_time_);
       }
       take_written_times(exited);
       if (exited) break;
@@ -229,6 +229,7 @@ class SolverWatch {
   LogFollower& log() { return log_; }
   scene::Progress& progress() { return progress_; }
   const SteadyState& rule() const { return rule_; }
+  double norm_time() const { return norm_time_; }
   const std::optional<Snapshot>& last() const { return prev_; }
   bool steady() const { return steady_; }
   bool stop_requested() const { return stop_requested_; }
@@ -260,7 +261,8 @@ class SolverWatch {
         snap = reader_.read(t);
       } catch (const NonPhysicalState& e) {
         end_solver();
-        fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_), log_.steps());
+        fail_diverged(e.what(), solver_.log_path(), solver_.cpu_seconds(), seconds_since(t0_),
+                      log_.steps(), norm_time_);
       } catch (const scene::RunError& e) {
         end_solver();
         fail_run(e.what(), solver_.log_path());
@@ -315,7 +317,9 @@ void finish_run(CaseResult& r, SolverWatch& watch, FoamProcess& solver, const sc
   set_control(cdir, "stopAt", "endTime");
   if (rc != 0 && !watch.stop_requested()) {
     const Diagnosis d = diagnose(rc, solver.log_path());
-    if (d.diverged) fail_diverged(d.why, solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps);
+    if (d.diverged)
+      fail_diverged(d.why, solver.log_path(), r.cpu_seconds, r.wall_seconds, r.steps,
+                    watch.norm_time());
     fail_run(d.why, solver.log_path());
   }
   r.steady_state_reached = watch.steady();

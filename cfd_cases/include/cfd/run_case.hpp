@@ -57,10 +57,18 @@ struct CaseResult {
 // fields): what it had spent, for a restart to add to.
 class Diverged : public scene::RunError {
  public:
-  Diverged(const std::string& what, double cpu, double wall, long solver_steps)
-      : scene::RunError(what), cpu_seconds(cpu), wall_seconds(wall), steps(solver_steps) {}
+  Diverged(const std::string& what, double cpu, double wall, long solver_steps,
+           double flow_through_time)
+      : scene::RunError(what),
+        cpu_seconds(cpu),
+        wall_seconds(wall),
+        steps(solver_steps),
+        time_per_flow_through(flow_through_time) {}
   double cpu_seconds, wall_seconds;
   long steps;
+  // One flow-through in the solver's (pseudo-)time: where a restart from a
+  // written state stands in flow-throughs.
+  double time_per_flow_through;
 };
 
 // Runs the scene on the mesh in mesh_dir/constant/polyMesh (patches inlet,

@@ -18,8 +18,8 @@ inline scene::Scene wedge_scene(double mach, double angle_deg, const std::string
 // A fresh directory under the build tree's test scratch area, named for the test.
 inline std::string scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path d =
-      std::filesystem::temp_directory_path() / "shockgrain_cfd_tests" / (std::string(info->test_suite_name()) + "." + info->name());
+  const std::filesystem::path d = std::filesystem::path(SCRATCH_DIR) / "cfd" /
+                                  (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d.string();

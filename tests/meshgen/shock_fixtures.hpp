@@ -21,7 +21,7 @@ inline std::string case_path(const std::string& name) {
 }
 
 inline std::string fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("meshgen_test_" + name);
+  const auto dir = std::filesystem::path(SCRATCH_DIR) / ("meshgen_test_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -31,7 +31,7 @@ CliRun run_cli(const std::string& exe, const std::string& args) {
 }
 
 std::string fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / name;
+  const fs::path d = fs::path(SCRATCH_DIR) / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d.string();

@@ -185,7 +185,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // The wedge fit matches attached shock angles. A wedge beyond the gas's
   // maximum deflection has none to match: its shock stands off, as a blunt
   // body's does, so it takes the blunt bodies' law (the fit's theta^2 term,
-  // extrapolated to 30-45 deg, would hold it at the elastic limit).
+  // extrapolated to 30-45 deg, would push it towards the elastic limit).
   const bool detached_wedge = angle_deg && scene::shock_may_stand_off(s);
   const double fit_angle_deg = detached_wedge ? kNaN : angle_deg.value_or(kNaN);
   const auto e = shape ? std::optional<double>(shape->evaluate(s.freestream.mach))

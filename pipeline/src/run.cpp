@@ -161,6 +161,11 @@ std::string outside_warning(const std::string& subject, const char* range_name, 
   return "; WARNING: " + subject + " lies outside " + range_name + " " + shortest(r.low) + "-" +
          shortest(r.high) + unit + ", so " + consequence;
 }
+// The deflection a wedge fit can match: a wedge's whose gas shock is attached.
+std::optional<double> attached_wedge_angle_deg(const scene::Scene& s) {
+  if (scene::shock_may_stand_off(s)) return std::nullopt;
+  return scene::calibration_angle_deg(*s.body);
+}
 }  // namespace
 
 AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
@@ -173,23 +178,23 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
         "granular.restitution as well");
   // Wedges interpolate in (Mach, angle). Other bodies have no wedge angle:
   // they take the table's e at their Mach number, an extrapolation from
-  // wedges that the report states.
-  const std::optional<double> angle_deg = scene::calibration_angle_deg(*s.body);
+  // wedges that the report states. The wedge fit matches attached shock
+  // angles: a wedge beyond the gas's maximum deflection has none to match,
+  // its shock stands off as a blunt body's does, so it is calibrated as one
+  // (the fit's theta^2 term, extrapolated to 30-45 deg, would push it towards
+  // the elastic limit).
+  const std::optional<double> wedge_deg = scene::calibration_angle_deg(*s.body);
+  const std::optional<double> angle_deg = attached_wedge_angle_deg(s);
+  const bool detached_wedge = wedge_deg && !angle_deg;
   const std::string path = calibration_path(s, table_path);
   if (!fs::exists(path))
     return {"no calibration table at " + path + "; restitution left at its default"};
   const auto t = read_calibration(path);
   // A blunt shape with its own fit takes it: the wedge e(M) misplaces bow shocks.
-  const auto shape_name = angle_deg ? std::nullopt : scene::bow_shape_class(*s.body);
+  const auto shape_name = wedge_deg ? std::nullopt : scene::bow_shape_class(*s.body);
   const BowShapeFit* shape = shape_name && t.bow_shock ? t.bow_shock->shape(*shape_name) : nullptr;
-  // The wedge fit matches attached shock angles. A wedge beyond the gas's
-  // maximum deflection has none to match: its shock stands off, as a blunt
-  // body's does, so it takes the blunt bodies' law (the fit's theta^2 term,
-  // extrapolated to 30-45 deg, would push it towards the elastic limit).
-  const bool detached_wedge = angle_deg && scene::shock_may_stand_off(s);
-  const double fit_angle_deg = detached_wedge ? kNaN : angle_deg.value_or(kNaN);
   const auto e = shape ? std::optional<double>(shape->evaluate(s.freestream.mach))
-                       : interpolate_restitution(t, s.freestream.mach, fit_angle_deg);
+                       : interpolate_restitution(t, s.freestream.mach, angle_deg.value_or(kNaN));
   if (!e) return {"", t.cpu_seconds};
   s.granular.restitution = quantised_restitution(*e);
   // The wedge table's angle scatter says nothing about a bow shock's standoff;
@@ -197,7 +202,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // gets it and the predictor uses it on a shock it finds detached: blunt
   // bodies, a wedge beyond its maximum deflection, and a wedge just below it,
   // where the granular gas's shock detaches first.
-  const double scatter = angle_deg ? table_angle_scatter_deg(t) : kNaN;
+  const double scatter = wedge_deg ? table_angle_scatter_deg(t) : kNaN;
   // A shape that runs at the law may have its fold measured: its stations are
   // corrected and its band takes the corrected stations' left-out scatter.
   const BowStationBias* bias =
@@ -231,7 +236,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // (1/theta grows fast below them).
   const auto angles = training_angle_range(t);
   const RestitutionFit* chosen = t.model ? t.fit(*t.model) : nullptr;
-  if (!shape && angle_deg && !detached_wedge && angles && chosen && uses_angle(chosen->model) &&
+  if (!shape && angle_deg && angles && chosen && uses_angle(chosen->model) &&
       !angles->contains(*angle_deg))
     note += outside_warning("the " + shortest(*angle_deg) + " deg deflection",
                             "the table's training range", *angles, " deg",
@@ -240,7 +245,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // charged to the bodies whose shock stands off in the gas (an attached
   // wedge whose granular shock detaches near the maximum deflection borrows
   // the scatter without that charge; its attached twins never use it).
-  const bool stands_off = !angle_deg || scene::shock_may_stand_off(s);
+  const bool stands_off = !angle_deg;  // a blunt body or a detached wedge
   // That scatter was measured on blunt bodies at a few Mach numbers; beyond
   // them the band's width is as unmeasured as e(M) is outside its range.
   const auto bow_range =

@@ -244,6 +244,10 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   const RestitutionFit& fit = choice->fit();
   table.model = fit.model;
   table.fits = choice->candidates;
+  const auto local = choose_local_correction(points, fit);
+  if (local)
+    attach_local_correction(table, local->bandwidth_log_mach, local->bandwidth_angle_deg,
+                            local->loo_rms);
   if (uses_angle(fit.model) && !table.fit(RestitutionModel::inverse_mach2))
     throw scene::RunError(
         "calibrate: the Mach-only model could not be fitted; blunt bodies would have no e");
@@ -253,7 +257,9 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   nlohmann::json case_rows = nlohmann::json::array();
   double check_cpu = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto e_loo = leave_one_out_restitution(points, fit.model, i);
+    const auto e_loo = local ? leave_one_out_corrected(points, fit.model, local->bandwidth_log_mach,
+                                                       local->bandwidth_angle_deg, i)
+                             : leave_one_out_restitution(points, fit.model, i);
     auto& row = rows[point_row[i]];
     CalibrationEntry& c = table.entries[i];
     if (!e_loo) {
@@ -324,6 +330,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       {"points", rows},
       {"model", model_key(fit.model)},
       {"candidates", candidates},
+      {"local_correction", local_correction_json(local)},
       {"case_studies", case_rows},
       {"bow_shock_kept", bow_shock.has_value()},
       {"seed_offsets",

@@ -5,11 +5,11 @@
 // settings its points were measured with.
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "pipeline/calibration.hpp"
+#include "pipeline/calibration_report.hpp"
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -73,17 +73,26 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
+  const auto local = choose_local_correction(pts, choice->fit());
+  if (local)
+    attach_local_correction(table, local->bandwidth_log_mach, local->bandwidth_angle_deg,
+                            local->loo_rms);
   // What the crossings cost to measure, when the points file records it.
   table.cpu_seconds = j.contains("cpu_seconds") && j["cpu_seconds"].is_number() ? j["cpu_seconds"].get<double>()
                                                                                  : std::nan("");
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;
   table.bow_shock = bow_shock_kept_by_wedge_fit(out);
   write_calibration(table, out);
-  nlohmann::json r = {{"points", pts.size()}, {"case_studies_left_out", skipped},
-                      {"model", model_formula(choice->fit().model)}, {"coefficients", choice->fit().coefficients},
-                      {"residual_sd", choice->fit().residual_sd}, {"loo_rms", choice->fit().loo_rms},
-                      {"table", out}, {"source", points_path},
-                      {"bow_shock_kept", table.bow_shock.has_value()}};
+  nlohmann::json r = {{"points", pts.size()},
+                      {"case_studies_left_out", skipped},
+                      {"model", model_formula(choice->fit().model)},
+                      {"coefficients", choice->fit().coefficients},
+                      {"residual_sd", choice->fit().residual_sd},
+                      {"loo_rms", choice->fit().loo_rms},
+                      {"table", out},
+                      {"source", points_path},
+                      {"bow_shock_kept", table.bow_shock.has_value()},
+                      {"local_correction", local_correction_json(local)}};
   return r;
 }
 

@@ -55,6 +55,13 @@ const nlohmann::json* chosen(const nlohmann::json& c) {
 }
 }  // namespace
 
+nlohmann::json local_correction_json(const std::optional<LocalCorrection>& c) {
+  if (!c) return nullptr;
+  return {{"h_log_mach", c->bandwidth_log_mach},
+          {"h_angle_deg", c->bandwidth_angle_deg},
+          {"loo_rms", c->loo_rms}};
+}
+
 nlohmann::json out_of_sample_summary(const nlohmann::json& c) {
   std::vector<double> loo, cases;
   for (const auto& p : c.at("points"))
@@ -95,6 +102,12 @@ std::string calibration_markdown(const nlohmann::json& c) {
     md << " | " << general(num(m, "residual_sd"), 3) << " | " << general(num(m, "loo_rms"), 3)
        << " |\n";
   }
+  if (const auto lc = c.find("local_correction"); lc != c.end() && lc->is_object())
+    md << "\nThe chosen model keeps a local correction: a Gaussian-kernel average of its "
+          "residuals at the training wedges (widths "
+       << general(num(*lc, "h_log_mach"), 3) << " in ln M, " << general(num(*lc, "h_angle_deg"), 3)
+       << " deg in theta), leave-one-out RMS of e " << general(num(*lc, "loo_rms"), 3)
+       << " against the model's own above.\n";
   md << "\nResidual scatter of e about the chosen fit (sd, n - p degrees of freedom): "
      << general(f ? num(*f, "residual_sd") : kNaN, 3) << ".\n\n";
 

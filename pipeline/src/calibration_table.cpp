@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 #include "pipeline/bow_station_bias.hpp"
 #include "pipeline/calibration.hpp"
@@ -26,6 +29,10 @@ constexpr int kEntryDigits = 6;
 constexpr int kCoefficientDigits = 17;
 // training_points must repeat the entries' (Mach, angle) to this tolerance.
 constexpr double kTrainingPointMatch = 1e-9;
+// For people reading a table: what local_correction adds to the chosen model.
+constexpr const char* kLocalFormula =
+    "e += sum k_i w_i r_i / (sum k_i w_i + exp(-2) mean w), r_i = e_i - model_i, "
+    "k_i = exp(-((ln M_i - ln M)/h_log_mach)^2/2 - ((theta_i - theta)/h_angle_deg)^2/2)";
 
 [[noreturn]] void bad(const std::string& path, const YAML::Node& n, const std::string& key,
                       const std::string& what) {
@@ -255,6 +262,46 @@ const RestitutionFit* CalibrationTable::fit(RestitutionModel m) const {
   return it == fits.end() ? nullptr : &*it;
 }
 
+namespace {
+// A value as the table file holds it (kEntryDigits significant digits).
+double as_written(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*g", kEntryDigits, x);
+  return std::strtod(buf, nullptr);
+}
+
+// The bandwidths are stored; the residuals are the chosen fit's at the
+// entries, so they are rebuilt here rather than written twice.
+LocalCorrection read_local(const std::string& path, const YAML::Node& n,
+                           const CalibrationTable& t) {
+  const std::string key = "local_correction";
+  if (!n.IsMap() || !n["h_log_mach"] || !n["h_angle_deg"])
+    bad(path, n, key, "expected a map {h_log_mach, h_angle_deg, loo_rms}");
+  if (!t.model || !uses_angle(*t.model))
+    bad(path, n, key, "needs a chosen model in the deflection (model)");
+  if (t.entries.empty()) bad(path, n, key, "needs the training entries its residuals come from");
+  const double hm = n["h_log_mach"].as<double>(), ht = n["h_angle_deg"].as<double>();
+  if (!(std::isfinite(hm) && hm > 0))
+    bad(path, n["h_log_mach"], key + ".h_log_mach", "expected a number > 0");
+  if (!(std::isfinite(ht) && ht > 0))
+    bad(path, n["h_angle_deg"], key + ".h_angle_deg", "expected a number > 0");
+  CalibrationTable c = t;
+  attach_local_correction(c, hm, ht, optional_number(n, "loo_rms", kNaN));
+  return *c.local_correction;
+}
+}  // namespace
+
+void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_angle_deg,
+                             double loo_rms) {
+  const RestitutionFit* fit = t.model ? t.fit(*t.model) : nullptr;
+  if (!fit) throw std::logic_error("attach_local_correction: the table has no chosen fit");
+  std::vector<RestitutionPoint> pts;
+  for (const auto& c : t.entries)
+    pts.push_back({c.mach, c.angle_deg, as_written(c.restitution), as_written(c.restitution_ci)});
+  t.local_correction = local_correction(pts, *fit, h_log_mach, h_angle_deg);
+  t.local_correction->loo_rms = loo_rms;
+}
+
 CalibrationTable read_calibration(const std::string& path) {
   CalibrationTable t;
   YAML::Node root;
@@ -304,6 +351,7 @@ CalibrationTable read_calibration(const std::string& path) {
     } else if (!t.fits.empty()) {
       bad(path, root["fits"], "model", "fits given but no chosen model");
     }
+    if (const auto lc = root["local_correction"]) t.local_correction = read_local(path, lc, t);
     if (const auto b = root["bow_shock"]) {
       if (!b.IsMap() || !b["relative_rms"])
         bad(path, b, "bow_shock", "expected a map {relative_rms, bodies, stations}");
@@ -391,6 +439,12 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
     e << YAML::Key << "fits" << YAML::Value << YAML::BeginSeq;
     for (const auto& f : t.fits) write_fit(e, f);
     e << YAML::EndSeq;
+    if (const auto& lc = t.local_correction)
+      e << YAML::Key << "local_correction" << YAML::Value << YAML::Flow << YAML::BeginMap
+        << YAML::Key << "formula" << YAML::Value << kLocalFormula << YAML::Key << "h_log_mach"
+        << YAML::Value << lc->bandwidth_log_mach << YAML::Key << "h_angle_deg" << YAML::Value
+        << lc->bandwidth_angle_deg << YAML::Key << "loo_rms" << YAML::Value << lc->loo_rms
+        << YAML::EndMap;
   }
   e.SetDoublePrecision(kEntryDigits);
   if (t.model) {
@@ -534,7 +588,10 @@ std::optional<double> interpolate_restitution(const CalibrationTable& t, double 
   if (t.model) {
     const RestitutionFit* f = std::isnan(angle_deg) ? blunt_restitution_law(t) : t.fit(*t.model);
     if (!f) return std::nullopt;  // read_calibration refuses such a table
-    return std::min(f->evaluate(mach, angle_deg), kMaxRestitution);
+    double e = f->evaluate(mach, angle_deg);
+    if (!std::isnan(angle_deg) && t.local_correction)
+      e += t.local_correction->evaluate(mach, angle_deg);
+    return std::min(e, kMaxRestitution);
   }
   if (t.entries.empty()) return std::nullopt;
   double wsum = 0, esum = 0;

@@ -43,14 +43,6 @@ std::vector<double> basis(RestitutionModel m, double mach, double angle_deg) {
   return {};
 }
 
-double weight(const RestitutionPoint& p) {
-  // An interval that is not a positive number carries no information on the
-  // weight; it is taken at the floor like a very small one.
-  const double ci = std::isfinite(p.restitution_ci) ? std::max(p.restitution_ci, kMinRestitutionCi)
-                                                    : kMinRestitutionCi;
-  return 1.0 / (ci * ci);
-}
-
 double dot(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0;
   for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
@@ -67,7 +59,7 @@ std::optional<std::vector<double>> solve(std::span<const RestitutionPoint> pts, 
   std::vector<double> rhs;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (i == skip) continue;
-    const double sw = std::sqrt(weight(pts[i]));
+    const double sw = std::sqrt(fit_weight(pts[i]));
     const auto row = basis(m, pts[i].mach, pts[i].angle_deg);
     for (std::size_t j = 0; j < p; ++j) cols[j].push_back(sw * row[j]);
     rhs.push_back(sw * pts[i].restitution);
@@ -106,6 +98,14 @@ double evaluate_coefficients(RestitutionModel m, const std::vector<double>& c, d
   return e;
 }
 }  // namespace
+
+double fit_weight(const RestitutionPoint& p) {
+  // An interval that is not a positive number carries no information on the
+  // weight; it is taken at the floor like a very small one.
+  const double ci = std::isfinite(p.restitution_ci) ? std::max(p.restitution_ci, kMinRestitutionCi)
+                                                    : kMinRestitutionCi;
+  return 1.0 / (ci * ci);
+}
 
 std::string model_key(RestitutionModel m) {
   switch (m) {
@@ -211,8 +211,8 @@ std::optional<double> leave_one_out_rms(std::span<const RestitutionPoint> points
     const auto e = leave_one_out_restitution(points, model, i);
     if (!e) return std::nullopt;
     const double r = points[i].restitution - *e;
-    swr += weight(points[i]) * r * r;
-    sw += weight(points[i]);
+    swr += fit_weight(points[i]) * r * r;
+    sw += fit_weight(points[i]);
   }
   return std::sqrt(swr / sw);
 }

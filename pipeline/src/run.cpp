@@ -218,7 +218,9 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
       : detached_wedge
           ? " (by Mach number alone, the blunt bodies' law: the wedge is beyond the gas's "
             "maximum deflection, so its shock stands off and no attached angle calibrates it)"
-      : angle_deg ? ""
+      : angle_deg ? (t.local_correction ? " (its model with the local correction at this Mach "
+                                          "number and deflection)"
+                                        : "")
                   : " (by Mach number alone: the table is calibrated on wedges, so this is an "
                     "extrapolation)";
   char value[32];

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pipeline/restitution_fit.hpp"
+#include "pipeline/restitution_local.hpp"
 #include "scene/units.hpp"
 
 namespace pipeline {
@@ -182,12 +183,21 @@ struct CalibrationTable {
   std::vector<RestitutionFit>
       fits;  // every candidate (the chosen one and the Mach-only one at least)
   const RestitutionFit* fit(RestitutionModel m) const;
+  // The chosen model's local correction (attached wedges only), when the
+  // calibration kept one; its residuals are rebuilt from the entries on read.
+  std::optional<LocalCorrection> local_correction;
   // CPU seconds the table cost to make (training runs and out-of-sample
   // checks); NaN when not recorded. Reports amortise it over the scenes it serves.
   double cpu_seconds = scene::kNaN;
   std::optional<BowShockScatter> bow_shock;
   std::optional<AngleScatter> angle_scatter;
 };
+
+// Sets the chosen model's local correction at these bandwidths, its
+// residuals taken at the entries as the table file holds them, so that a
+// table read back evaluates identically.
+void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_angle_deg,
+                             double loo_rms);
 
 CalibrationTable read_calibration(
     const std::string& path);  // InputError (file and key) if malformed

@@ -56,6 +56,9 @@ struct RestitutionPoint {
   double restitution = 1, restitution_ci = 0;
 };
 
+// A point's weight in the fits: 1 / max(ci, floor)^2.
+double fit_weight(const RestitutionPoint& p);
+
 struct RestitutionFit {
   RestitutionModel model = RestitutionModel::inverse_mach2;
   std::vector<double> coefficients;  // c0, c1, ... as in model_formula

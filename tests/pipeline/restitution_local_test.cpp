@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "pipeline/calibration.hpp"
+#include "pipeline/run.hpp"
 #include "scene/errors.hpp"
+#include "scene/scene.hpp"
 
 namespace {
 using pipeline::RestitutionModel;
@@ -115,6 +117,13 @@ TEST(LocalCorrection, ATableReadBackEvaluatesAsWritten) {
   EXPECT_NE(*pipeline::interpolate_restitution(back, m, a), c->fit().evaluate(m, a));
   EXPECT_EQ(*pipeline::interpolate_restitution(back, m, NAN),
             *pipeline::interpolate_restitution(table_of(pts, *c), m, NAN));
+
+  // A wedge scene takes the corrected e, and its note says so.
+  auto wedge = scene::parse_scene("body: {kind: wedge, angle_deg: 22}\nfreestream: {mach: 3.25}\n");
+  const auto applied = pipeline::apply_calibration(wedge, path);
+  EXPECT_NE(applied.note.find("local correction"), std::string::npos) << applied.note;
+  EXPECT_NEAR(wedge.granular.restitution, *pipeline::interpolate_restitution(back, m, a),
+              pipeline::kRestitutionQuantum);
 
   // A malformed correction names its key.
   std::string text;

@@ -152,8 +152,10 @@ std::string calibration_markdown(const nlohmann::json& c) {
   const auto& cpu = c.at("cpu_seconds");
   md << "CPU: " << fixed(num(cpu, "sweeps"), 0) << " s for the sweeps, "
      << fixed(num(cpu, "out_of_sample"), 0) << " s for the out-of-sample runs, "
-     << fixed(num(cpu, "total"), 0) << " s in all (cached runs count ~0); wall "
-     << fixed(num(c, "wall_seconds"), 0) << " s.\n";
+     << fixed(num(cpu, "total"), 0)
+     << " s in all (a cached run counts what it cost when it ran; this process "
+     << fixed(num(cpu, "this_process"), 0) << " s); wall " << fixed(num(c, "wall_seconds"), 0)
+     << " s.\n";
   if (c.value("bow_shock_kept", false))
     md << "\nThe table's bow_shock block (and its shape fits) is kept: it records the e(M) its "
           "blunt bodies ran at, and blunt bodies keep that law.\n";

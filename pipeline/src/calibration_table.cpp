@@ -270,6 +270,20 @@ double as_written(double x) {
   return std::strtod(buf, nullptr);
 }
 
+// The chosen fit's correction from its residuals at the entries as the
+// table file holds them.
+LocalCorrection correction_at_entries(const CalibrationTable& t, double h_log_mach,
+                                      double h_angle_deg, double loo_rms) {
+  const RestitutionFit* fit = t.model ? t.fit(*t.model) : nullptr;
+  if (!fit) throw std::logic_error("local correction: the table has no chosen fit");
+  std::vector<RestitutionPoint> pts;
+  for (const auto& c : t.entries)
+    pts.push_back({c.mach, c.angle_deg, as_written(c.restitution), as_written(c.restitution_ci)});
+  LocalCorrection lc = local_correction(pts, *fit, h_log_mach, h_angle_deg);
+  lc.loo_rms = loo_rms;
+  return lc;
+}
+
 // The bandwidths are stored; the residuals are the chosen fit's at the
 // entries, so they are rebuilt here rather than written twice.
 LocalCorrection read_local(const std::string& path, const YAML::Node& n,
@@ -285,21 +299,13 @@ LocalCorrection read_local(const std::string& path, const YAML::Node& n,
     bad(path, n["h_log_mach"], key + ".h_log_mach", "expected a number > 0");
   if (!(std::isfinite(ht) && ht > 0))
     bad(path, n["h_angle_deg"], key + ".h_angle_deg", "expected a number > 0");
-  CalibrationTable c = t;
-  attach_local_correction(c, hm, ht, optional_number(n, "loo_rms", kNaN));
-  return *c.local_correction;
+  return correction_at_entries(t, hm, ht, optional_number(n, "loo_rms", kNaN));
 }
 }  // namespace
 
 void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_angle_deg,
                              double loo_rms) {
-  const RestitutionFit* fit = t.model ? t.fit(*t.model) : nullptr;
-  if (!fit) throw std::logic_error("attach_local_correction: the table has no chosen fit");
-  std::vector<RestitutionPoint> pts;
-  for (const auto& c : t.entries)
-    pts.push_back({c.mach, c.angle_deg, as_written(c.restitution), as_written(c.restitution_ci)});
-  t.local_correction = local_correction(pts, *fit, h_log_mach, h_angle_deg);
-  t.local_correction->loo_rms = loo_rms;
+  t.local_correction = correction_at_entries(t, h_log_mach, h_angle_deg, loo_rms);
 }
 
 CalibrationTable read_calibration(const std::string& path) {

@@ -247,10 +247,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
   const RestitutionFit& fit = choice->fit();
   table.model = fit.model;
   table.fits = choice->candidates;
-  const auto local = choose_local_correction(points, fit);
-  if (local)
-    attach_local_correction(table, local->bandwidth_log_mach, local->bandwidth_angle_deg,
-                            local->loo_rms);
+  const auto local = keep_local_correction(table, points);
   if (uses_angle(fit.model) && !table.fit(RestitutionModel::inverse_mach2))
     throw scene::RunError(
         "calibrate: the Mach-only model could not be fitted; blunt bodies would have no e");

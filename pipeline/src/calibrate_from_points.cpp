@@ -73,10 +73,7 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
-  const auto local = choose_local_correction(pts, choice->fit());
-  if (local)
-    attach_local_correction(table, local->bandwidth_log_mach, local->bandwidth_angle_deg,
-                            local->loo_rms);
+  const auto local = keep_local_correction(table, pts);
   // What the crossings cost to measure, when the points file records it.
   table.cpu_seconds = j.contains("cpu_seconds") && j["cpu_seconds"].is_number() ? j["cpu_seconds"].get<double>()
                                                                                  : std::nan("");

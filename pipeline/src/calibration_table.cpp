@@ -308,6 +308,15 @@ void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_an
   t.local_correction = correction_at_entries(t, h_log_mach, h_angle_deg, loo_rms);
 }
 
+std::optional<LocalCorrection> keep_local_correction(CalibrationTable& t,
+                                                     std::span<const RestitutionPoint> points) {
+  const RestitutionFit* fit = t.model ? t.fit(*t.model) : nullptr;
+  auto kept = fit ? choose_local_correction(points, *fit) : std::nullopt;
+  if (kept)
+    attach_local_correction(t, kept->bandwidth_log_mach, kept->bandwidth_angle_deg, kept->loo_rms);
+  return kept;
+}
+
 CalibrationTable read_calibration(const std::string& path) {
   CalibrationTable t;
   YAML::Node root;

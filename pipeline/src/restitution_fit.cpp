@@ -163,10 +163,9 @@ std::size_t parameter_count(RestitutionModel m) {
 }
 
 bool uses_angle(RestitutionModel m) {
-  return m == RestitutionModel::inverse_mach2_angle || m == RestitutionModel::log_mach_angle ||
-         m == RestitutionModel::log_mach_inverse_angle ||
-         m == RestitutionModel::log_mach2_inverse_angle ||
-         m == RestitutionModel::log_mach2_inverse_angle_angle2;
+  // Read off the basis, so a new form cannot be left out: its functions at
+  // two deflections differ exactly when it uses the angle.
+  return basis(m, 2.0, 10.0) != basis(m, 2.0, 20.0);
 }
 
 double RestitutionFit::evaluate(double mach, double angle_deg) const {

@@ -64,6 +64,17 @@ LocalCorrection local_correction(std::span<const RestitutionPoint> points,
   return c;
 }
 
+namespace {
+// Point i's e from `fit` (the model refitted without it) and the correction
+// built on the other points.
+double corrected_left_out(std::span<const RestitutionPoint> rest, const RestitutionPoint& p,
+                          const RestitutionFit& fit, double bandwidth_log_mach,
+                          double bandwidth_angle_deg) {
+  const auto c = local_correction(rest, fit, bandwidth_log_mach, bandwidth_angle_deg);
+  return fit.evaluate(p.mach, p.angle_deg) + c.evaluate(p.mach, p.angle_deg);
+}
+}  // namespace
+
 std::optional<double> leave_one_out_corrected(std::span<const RestitutionPoint> points,
                                               RestitutionModel model, double bandwidth_log_mach,
                                               double bandwidth_angle_deg, std::size_t i) {
@@ -71,29 +82,33 @@ std::optional<double> leave_one_out_corrected(std::span<const RestitutionPoint> 
   const auto rest = without(points, i);
   const auto fit = fit_restitution(rest, model);
   if (!fit) return std::nullopt;
-  const auto c = local_correction(rest, *fit, bandwidth_log_mach, bandwidth_angle_deg);
-  const auto& p = points[i];
-  return fit->evaluate(p.mach, p.angle_deg) + c.evaluate(p.mach, p.angle_deg);
+  return corrected_left_out(rest, points[i], *fit, bandwidth_log_mach, bandwidth_angle_deg);
 }
 
 std::optional<LocalCorrection> choose_local_correction(std::span<const RestitutionPoint> points,
                                                        const RestitutionFit& fit) {
   if (!uses_angle(fit.model) || !std::isfinite(fit.loo_rms) || points.size() < 2)
     return std::nullopt;
+  // The model refitted without each point, once: every width's left-out
+  // correction stands on the same fits.
+  std::vector<std::vector<RestitutionPoint>> rests;
+  std::vector<RestitutionFit> left_out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    rests.push_back(without(points, i));
+    const auto f = fit_restitution(rests.back(), fit.model);
+    if (!f) return std::nullopt;
+    left_out.push_back(*f);
+  }
   std::optional<LocalCorrection> best;
   for (const double hm : kBandwidthsLogMach)
     for (const double ht : kBandwidthsAngleDeg) {
       double swr = 0, sw = 0;
-      bool ok = true;
-      for (std::size_t i = 0; i < points.size() && ok; ++i) {
-        const auto e = leave_one_out_corrected(points, fit.model, hm, ht, i);
-        ok = e.has_value();
-        if (!ok) break;
-        const double r = points[i].restitution - *e;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const double r =
+            points[i].restitution - corrected_left_out(rests[i], points[i], left_out[i], hm, ht);
         swr += fit_weight(points[i]) * r * r;
         sw += fit_weight(points[i]);
       }
-      if (!ok) continue;
       const double loo = std::sqrt(swr / sw);
       if (!best || loo < best->loo_rms) {
         best = local_correction(points, fit, hm, ht);

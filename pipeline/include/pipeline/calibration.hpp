@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -198,6 +199,12 @@ struct CalibrationTable {
 // table read back evaluates identically.
 void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_angle_deg,
                              double loo_rms);
+
+// Chooses the table's chosen model's local correction on `points` (the
+// crossings it was fitted to) and, where one is kept, attaches it; returns
+// what was kept (nullopt: none).
+std::optional<LocalCorrection> keep_local_correction(CalibrationTable& t,
+                                                     std::span<const RestitutionPoint> points);
 
 CalibrationTable read_calibration(
     const std::string& path);  // InputError (file and key) if malformed

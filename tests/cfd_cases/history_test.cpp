@@ -8,13 +8,14 @@
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path case_with_history(const std::string& name, const std::string& text) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_history_" + name);
+  const fs::path d = test_support::scratch_root() / ("shockgrain_history_" + name);
   fs::create_directories(d);
   scene::write_file_atomic((d / "history.csv").string(), text);
   return d;
@@ -31,7 +32,7 @@ TEST(History, LastFiniteValueOfAColumn) {
 }
 
 TEST(History, MissingFileColumnOrValueNamesTheFile) {
-  const auto none = fs::temp_directory_path() / "shockgrain_history_none";
+  const auto none = test_support::scratch_root() / "shockgrain_history_none";
   fs::remove_all(none);
   EXPECT_THROW(cfd::last_history_value(none.string(), "shock_x"), scene::InputError);
   const auto d = case_with_history("nan", "time,shock_x\n0.1,nan\n0.2,nan\n");

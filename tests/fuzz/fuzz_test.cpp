@@ -31,6 +31,7 @@
 #include "scene/cli.hpp"
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -169,9 +170,9 @@ TEST(Fuzz, BrokenInputsAreRefusedCleanly) {
   const int cases = static_cast<int>(env_or("SHOCKGRAIN_FUZZ_CASES", kDefaultCases));
   fuzz::Rng rng(seed);
   const fs::path root =
-      fs::temp_directory_path() / ("shockgrain_fuzz_" + std::to_string(::getpid()));
+      test_support::scratch_root() / ("shockgrain_fuzz_" + std::to_string(::getpid()));
   // Inputs of failing cases are kept here for replay.
-  const fs::path kept = fs::temp_directory_path() / "shockgrain_fuzz_failures";
+  const fs::path kept = test_support::scratch_root() / "shockgrain_fuzz_failures";
   fs::remove_all(root);
   fs::create_directories(root);
 

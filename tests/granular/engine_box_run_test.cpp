@@ -10,6 +10,7 @@
 #include "granular/box_setup.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace granular {
 namespace {
@@ -20,7 +21,7 @@ constexpr double kEnergyTolerance = 1e-10;
 constexpr double kShortRunZTolerance = 0.03;
 
 std::string out_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() / ("granular_engine_" + name);
+  const auto d = test_support::scratch_root() / ("granular_engine_" + name);
   std::filesystem::remove_all(d);
   return d.string();
 }

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <vector>
 
+#include "scratch.hpp"
+
 namespace flowtest {
 
 double upstream_mean(const scene::Lattice& lat, const std::string& field, double x_max) {
@@ -71,10 +73,7 @@ std::optional<ShockFit> fit_wedge_shock(const scene::Lattice& lat, double thresh
 }
 
 std::string temp_dir(const std::string& name) {
-  const auto p = std::filesystem::temp_directory_path() / ("granular_flow_test_" + name);
-  std::filesystem::remove_all(p);
-  std::filesystem::create_directories(p);
-  return p.string();
+  return test_support::fresh_dir("granular_flow_test_" + name);
 }
 
 }  // namespace flowtest

@@ -13,6 +13,7 @@
 #include "scene/body_traits.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace meshgen_test {
 
@@ -21,10 +22,7 @@ inline std::string case_path(const std::string& name) {
 }
 
 inline std::string fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::path(SCRATCH_DIR) / ("meshgen_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  return test_support::fresh_dir("meshgen_test_" + name);
 }
 
 // The predicted shock of a case scene: exact for wedges, Billig's

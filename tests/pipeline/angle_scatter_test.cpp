@@ -13,6 +13,7 @@
 #include "pipeline/calibration.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -21,10 +22,7 @@ const std::string kSource = SOURCE_DIR;
 constexpr double kTol = 1e-12;
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_angle_scatter_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("shockgrain_angle_scatter_" + name);
 }
 
 // An angle_check.sh wedge directory: the gas angle and `seeds` granular runs

@@ -11,6 +11,7 @@
 #include "pipeline/error_measures.hpp"
 #include "scene/gasdynamics.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -31,7 +32,7 @@ TEST(BluntCase, DiscMach4CoarseGridMeetsPitotAndHasASmoothShockAtTheAxis) {
       "name: disc_M4\nbody: {kind: disc, radius: 0.5}\nfreestream: {mach: 4}\n"
       "domain: {xmin: -1.53365831425246, xmax: 0.5, ymin: 0, ymax: 2.50975669227997, symmetric: "
       "true}\n");
-  const fs::path d = fs::temp_directory_path() / "pipeline_blunt_case";
+  const fs::path d = test_support::scratch_root() / "pipeline_blunt_case";
   fs::remove_all(d);
   fs::create_directories(d);
   meshgen::MeshRequest req;

@@ -12,6 +12,7 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -73,7 +74,7 @@ TEST(BowShapeFit, TooFewBodiesOrOneMachNumberGiveNoFit) {
 // The table keeps a shape's fit to the digit; a disc takes it (and its
 // scatter), Apollo and polygons keep the wedge e(M) and the pooled scatter.
 TEST(BowShapeFit, TableKeepsItAndOnlyThatShapeTakesIt) {
-  const fs::path d = fs::temp_directory_path() / "shockgrain_bow_shape_table";
+  const fs::path d = test_support::scratch_root() / "shockgrain_bow_shape_table";
   fs::remove_all(d);
   fs::create_directories(d);
   const std::string path = table_with_disc_fit(d);
@@ -122,7 +123,7 @@ TEST(BowShapeFit, TableKeepsItAndOnlyThatShapeTakesIt) {
 
 // A shape fit with fewer than three bodies is a malformed table.
 TEST(BowShapeFit, TableWithATwoBodyShapeIsRefused) {
-  const fs::path d = fs::temp_directory_path() / "shockgrain_bow_shape_bad";
+  const fs::path d = test_support::scratch_root() / "shockgrain_bow_shape_bad";
   fs::remove_all(d);
   fs::create_directories(d);
   const std::string path = table_with_disc_fit(d);
@@ -146,7 +147,7 @@ TEST(BowShapeFit, TableWithATwoBodyShapeIsRefused) {
 // 0.5 (the body length) with its nose at x = -0.5 and the shock read at
 // x = -0.775 at the last written time stands 0.55 radii off.
 TEST(BowShapeFit, GasStandoffIsTheFinestUniformGridsStagnationLineReading) {
-  const fs::path d = fs::temp_directory_path() / "shockgrain_bow_gas_standoff";
+  const fs::path d = test_support::scratch_root() / "shockgrain_bow_gas_standoff";
   fs::remove_all(d);
   fs::create_directories(d / "cfd/uniform_h1");
   fs::create_directories(d / "cfd/uniform_h2");

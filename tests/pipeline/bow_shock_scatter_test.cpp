@@ -14,6 +14,7 @@
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
 #include "scene/shock_csv.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -22,10 +23,7 @@ using scene::kNaN;
 const std::string kSource = SOURCE_DIR;
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_bow_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("shockgrain_bow_" + name);
 }
 
 // Stations on the line x = 0 facing -x, the shock at `distance[i]` ahead.

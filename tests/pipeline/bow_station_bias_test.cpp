@@ -12,6 +12,7 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -19,10 +20,7 @@ namespace {
 const std::string kSource = SOURCE_DIR;
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_bias_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("shockgrain_bias_" + name);
 }
 
 // A body whose stations (inclinations 0-85 deg) and standoff miss the gas's

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "pipeline/stage_cache.hpp"
+#include "scratch.hpp"
 
 TEST(Cache, FingerprintSeparatesParts) {
   EXPECT_NE(pipeline::fingerprint({"ab", "c"}), pipeline::fingerprint({"a", "bc"}));
@@ -12,7 +13,7 @@ TEST(Cache, FingerprintSeparatesParts) {
 }
 
 TEST(Cache, RecordMakesAStageFreshUntilInvalidated) {
-  const auto root = (std::filesystem::temp_directory_path() / "pipeline_cache_test").string();
+  const auto root = (test_support::scratch_root() / "pipeline_cache_test").string();
   std::filesystem::remove_all(root);
   pipeline::StageCache c(root);
   EXPECT_FALSE(c.fresh("granular", "abc"));

@@ -13,11 +13,12 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 TEST(Calibration, RoundTripAndInterpolation) {
   pipeline::CalibrationTable t;
   t.entries = {{3, 10, 0.8, 0.02, 27.38, 27.5, 0.3}, {5, 20, 0.6, 0.03, 29.8, 29.9, 0.4}};
-  const auto path = (std::filesystem::temp_directory_path() / "calib_test.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_test.yaml").string();
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_EQ(back.entries.size(), 2u);
@@ -33,7 +34,7 @@ TEST(Calibration, RoundTripAndInterpolation) {
 TEST(Calibration, AppliedOnlyWhenTheSceneLeavesRestitutionUnset) {
   pipeline::CalibrationTable t;
   t.entries = {{3, 10, 0.8, 0.02, 27.38, 27.5, 0.3}};
-  const auto path = (std::filesystem::temp_directory_path() / "calib_apply.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_apply.yaml").string();
   pipeline::write_calibration(t, path);
   auto s = scene::parse_scene("body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   const auto applied = pipeline::apply_calibration(s, path);
@@ -48,7 +49,7 @@ TEST(Calibration, AppliedOnlyWhenTheSceneLeavesRestitutionUnset) {
 }
 
 TEST(Calibration, MalformedTableIsInputError) {
-  const auto path = (std::filesystem::temp_directory_path() / "calib_bad.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_bad.yaml").string();
   scene::write_file_atomic(path, "entries: [{mach: 3, angle_deg: 10, restitution: 1.7}]\n");
   EXPECT_THROW(pipeline::read_calibration(path), scene::InputError);
   EXPECT_THROW(pipeline::read_calibration("/nonexistent/calib.yaml"), scene::InputError);
@@ -91,7 +92,7 @@ pipeline::CalibrationTable fitted_table() {
 TEST(Calibration, FittedTableRoundTripsAtFullPrecision) {
   auto t = fitted_table();
   t.cpu_seconds = 1094.5;
-  const auto path = (std::filesystem::temp_directory_path() / "calib_fit.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_fit.yaml").string();
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_TRUE(back.model.has_value());
@@ -128,7 +129,7 @@ TEST(Calibration, FittedTableEvaluatesTheModel) {
 }
 
 TEST(Calibration, FittedTableAppliedToAScene) {
-  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_apply.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_fit_apply.yaml").string();
   pipeline::write_calibration(fitted_table(), path);
   auto s = scene::parse_scene("body: {kind: wedge, angle_deg: 15}\nfreestream: {mach: 4}\n");
   const auto applied = pipeline::apply_calibration(s, path);
@@ -170,7 +171,7 @@ TEST(Calibration, OutsideTheTrainingMachRangeIsSaid) {
   EXPECT_DOUBLE_EQ(range->low, 2.5);
   EXPECT_DOUBLE_EQ(range->high, 6.0);
   EXPECT_FALSE(pipeline::training_mach_range(pipeline::CalibrationTable{}).has_value());
-  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_range.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_fit_range.yaml").string();
   pipeline::write_calibration(fitted_table(), path);
   // Inside (the ends included): no warning.
   for (const char* mach : {"2.5", "4", "6"}) {
@@ -200,7 +201,7 @@ TEST(Calibration, OutsideTheTrainingDeflectionsIsSaid) {
   ASSERT_TRUE(range.has_value());
   EXPECT_DOUBLE_EQ(range->low, 8.0);
   EXPECT_DOUBLE_EQ(range->high, 20.0);
-  const auto path = (std::filesystem::temp_directory_path() / "calib_fit_angles.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_fit_angles.yaml").string();
   pipeline::write_calibration(fitted_table(), path);
   auto inside = scene::parse_scene("body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 4}\n");
   EXPECT_EQ(pipeline::apply_calibration(inside, path).note.find("WARNING"), std::string::npos);
@@ -214,7 +215,7 @@ TEST(Calibration, OutsideTheTrainingDeflectionsIsSaid) {
 }
 
 TEST(Calibration, MalformedFitIsInputErrorNamingTheKey) {
-  const auto path = (std::filesystem::temp_directory_path() / "calib_bad_fit.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_bad_fit.yaml").string();
   const std::string entries = "entries: [{mach: 3, angle_deg: 10, restitution: 0.98}]\n";
   const auto message = [&](const std::string& text) -> std::string {
     scene::write_file_atomic(path, text);
@@ -269,7 +270,7 @@ TEST(Calibration, BluntBodiesKeepTheLawTheirBowBlockWasMeasuredUnder) {
   ASSERT_TRUE(kept.has_value());
   EXPECT_DOUBLE_EQ(kept->relative_rms, 0.17);
 
-  const auto path = (std::filesystem::temp_directory_path() / "calib_law.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_law.yaml").string();
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_TRUE(back.bow_shock && back.bow_shock->restitution_law);
@@ -303,7 +304,7 @@ TEST(Calibration, AWedgeBeyondItsMaximumDeflectionTakesTheBluntLaw) {
   t.bow_shock->relative_rms = 0.17;
   t.bow_shock->restitution_law = pipeline::RestitutionFit{
       pipeline::RestitutionModel::log_mach, {1.014, -0.028}, 0.003, 0.0028};
-  const auto path = (std::filesystem::temp_directory_path() / "calib_detached.yaml").string();
+  const auto path = (test_support::scratch_root() / "calib_detached.yaml").string();
   pipeline::write_calibration(t, path);
   auto detached = scene::parse_scene("body: {kind: wedge, angle_deg: 36}\nfreestream: {mach: 3}\n");
   const auto applied = pipeline::apply_calibration(detached, path);
@@ -346,7 +347,7 @@ TEST(Calibration, OutOfSampleSummaryLeavesTrainingPointsOut) {
 // Training on measured crossings (pipeline parametric's JSON): the fit
 // recovers e = c0 + c1/M^2 from exact points and never trains on a case study.
 TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
-  const auto dir = std::filesystem::temp_directory_path() / "calib_from_points";
+  const auto dir = test_support::scratch_root() / "calib_from_points";
   std::filesystem::create_directories(dir);
   nlohmann::json j;
   j["crossings"] = nlohmann::json::array();

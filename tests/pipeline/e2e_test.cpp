@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -21,7 +22,7 @@ const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("pipeline_e2e_" + name);
+  const fs::path d = test_support::scratch_root() / ("pipeline_e2e_" + name);
   fs::remove_all(d);
   return d;
 }

@@ -12,6 +12,7 @@
 
 #include "scene/errors.hpp"
 #include "scene/units.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -37,7 +38,7 @@ pipeline::ParametricPoint small_wedge(double theta, double e) {
 }  // namespace
 
 TEST(Parametric, BadInputExitsTwo) {
-  const auto out = (fs::temp_directory_path() / "parametric_bad").string();
+  const auto out = (test_support::scratch_root() / "parametric_bad").string();
   EXPECT_EQ(exit_code("parametric --out " + out + " --no-such-option"), 2);
   EXPECT_EQ(exit_code("parametric --out " + out + " --budget-cpu-seconds 0"), 2);
   EXPECT_EQ(exit_code("parametric --out " + out + " --budget-cpu-seconds -5"), 2);
@@ -83,7 +84,7 @@ TEST(Parametric, CrossingInterpolatesAndPropagatesIntervals) {
 
 // Real granular runs: four wedges and a disc, about a CPU minute.
 TEST(Parametric, ShortStudyPhysics) {
-  const auto out = (fs::temp_directory_path() / "parametric_short").string();
+  const auto out = (test_support::scratch_root() / "parametric_short").string();
   fs::remove_all(out);
   pipeline::ParametricPanel wedges{
       "w",

@@ -15,6 +15,7 @@
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -34,7 +35,7 @@ constexpr double kImpossibleTarget = 1e-6;
 constexpr double kSmallBudget = 0.02;
 
 std::string fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_precision_" + name);
+  const fs::path d = test_support::scratch_root() / ("shockgrain_precision_" + name);
   fs::remove_all(d);
   return d.string();
 }

@@ -13,6 +13,7 @@
 #include "scene/lattice.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -26,7 +27,7 @@ const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 TEST(PredictorSlow, CoarseCfdLocatesTheWedgeShock) {
   auto s = scene::load_scene(kData + "/wedge_verdict.yaml");
   s.pipeline.levels = {4.0};
-  const fs::path dir = fs::temp_directory_path() / "shockgrain_predictor_coarse_cfd";
+  const fs::path dir = test_support::scratch_root() / "shockgrain_predictor_coarse_cfd";
   fs::remove_all(dir);
   const auto p = pipeline::predict_shock(s, "coarse_cfd", dir.string(), 1);
   ASSERT_EQ(p.kind, scene::ShockKind::attached);
@@ -43,7 +44,7 @@ TEST(PredictorSlow, CoarseCfdLocatesTheWedgeShock) {
 TEST(PredictorSlow, AdaptSizesTheWedgeGridsAtTheShock) {
   auto s = scene::load_scene(kData + "/wedge_verdict.yaml");
   s.pipeline.levels = {4.0, 2.0};
-  const fs::path dir = fs::temp_directory_path() / "shockgrain_predictor_adapt";
+  const fs::path dir = test_support::scratch_root() / "shockgrain_predictor_adapt";
   fs::remove_all(dir);
   pipeline::PredictOptions o;
   o.predictor = "adapt";

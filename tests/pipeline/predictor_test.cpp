@@ -17,6 +17,7 @@
 #include "scene/io.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -27,7 +28,7 @@ const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_predictor_" + name);
+  const fs::path d = test_support::scratch_root() / ("shockgrain_predictor_" + name);
   fs::remove_all(d);
   return d;
 }

@@ -6,6 +6,7 @@
 #include "pipeline/studies.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 TEST(Sweep, ParseVary) {
   const auto v = pipeline::parse_vary("granular.restitution=0.8,0.9,1.0");
@@ -17,7 +18,7 @@ TEST(Sweep, ParseVary) {
 }
 
 TEST(Sweep, SceneWithSetsNestedKeysAndRevalidates) {
-  const auto path = (std::filesystem::temp_directory_path() / "sweep_scene.yaml").string();
+  const auto path = (test_support::scratch_root() / "sweep_scene.yaml").string();
   scene::write_file_atomic(path, "body: {kind: wedge, angle_deg: 10}\nfreestream: {mach: 3}\n");
   const auto s = pipeline::scene_with(path, {{"granular.restitution", "0.85"}, {"body.angle_deg", "15"}});
   EXPECT_DOUBLE_EQ(s.granular.restitution, 0.85);

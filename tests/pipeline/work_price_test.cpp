@@ -1,5 +1,7 @@
 // The work price: a machine's cost per cell-step fitted on a run's timings,
 // and the verdict priced by it (work_price.hpp, verdict.hpp).
+#include "pipeline/work_price.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,9 +10,9 @@
 
 #include "pipeline/rejudge.hpp"
 #include "pipeline/verdict.hpp"
-#include "pipeline/work_price.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace {
 using pipeline::VerdictRun;
@@ -162,8 +164,7 @@ TEST(PricedVerdict, RunsWithoutStepsFallBackToMeasuredTimings) {
 }
 
 TEST(Rejudge, MissingOrMalformedSummaryIsAnInputErrorNamingTheFile) {
-  const std::string dir = testing::TempDir() + "/rejudge_bad";
-  std::filesystem::create_directories(dir);
+  const std::string dir = test_support::fresh_dir("rejudge_bad");
   EXPECT_THROW(pipeline::rejudge_summary(dir + "/none.json"), scene::InputError);
   scene::write_file_atomic(dir + "/summary.json", "{\"runs\": [{\"family\": \"uniform\", \"level\": 1}]}");
   try {

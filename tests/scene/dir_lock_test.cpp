@@ -1,16 +1,18 @@
 // Two runs into one output directory: the second is refused while the first
 // holds the lock, and the lock is free again once the first ends.
+#include "scene/dir_lock.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include "scene/dir_lock.hpp"
 #include "scene/errors.hpp"
+#include "scratch.hpp"
 
 TEST(DirLock, SecondRunIsRefusedUntilTheFirstEnds) {
-  const auto dir = (std::filesystem::temp_directory_path() / "shockgrain_dir_lock_test").string();
+  const auto dir = (test_support::scratch_root() / "shockgrain_dir_lock_test").string();
   std::filesystem::remove_all(dir);
   std::optional<scene::DirLock> first(std::in_place, dir);
   try {

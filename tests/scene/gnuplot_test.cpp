@@ -13,17 +13,14 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/process.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("scene_test_gnuplot_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("scene_test_gnuplot_" + std::to_string(::getpid()) + "_" + name);
 }
 
 // Each would run a command if gnuplot (or a shell) evaluated it.

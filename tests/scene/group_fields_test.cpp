@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "scene/errors.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -26,8 +27,7 @@ scene::Lattice group(double value) {
 TEST(GroupFields, RoundTripThroughAVtiFile) {
   const std::vector<scene::Lattice> groups{group(0.1), group(0.2), group(0.3)};
   const std::string path =
-      (std::filesystem::temp_directory_path() / ("groups_" + std::to_string(::getpid()) + ".vti"))
-          .string();
+      (test_support::scratch_root() / ("groups_" + std::to_string(::getpid()) + ".vti")).string();
   scene::write_vti(scene::pack_groups(groups), path);
   const std::vector<scene::Lattice> back = scene::unpack_groups(scene::read_vti(path), path);
   std::filesystem::remove(path);

@@ -1,16 +1,18 @@
 // Atomic writes: a failed write leaves the previous good file untouched.
+#include "scene/io.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
 TEST(Io, FailedWriteKeepsThePreviousFile) {
-  const fs::path d = fs::temp_directory_path() / "scene_test_io";
+  const fs::path d = test_support::scratch_root() / "scene_test_io";
   fs::remove_all(d);
   const auto path = (d / "summary.json").string();
   scene::write_json_atomic(path, {{"collisions", 42}});
@@ -26,7 +28,7 @@ TEST(Io, FailedWriteKeepsThePreviousFile) {
 }
 
 TEST(Io, NonFiniteNumbersBecomeNull) {
-  const fs::path d = fs::temp_directory_path() / "scene_test_io2";
+  const fs::path d = test_support::scratch_root() / "scene_test_io2";
   const auto path = (d / "s.json").string();
   scene::write_json_atomic(path, {{"standoff", std::nan("")}, {"x", 1.5}});
   const auto j = nlohmann::json::parse(scene::read_file(path));

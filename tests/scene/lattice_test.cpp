@@ -1,4 +1,6 @@
 // Lattice fields: .vti round trip, interpolation, and bad files.
+#include "scene/lattice.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,16 +9,13 @@
 
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
-#include "scene/lattice.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("scene_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("scene_test_" + name);
 }
 }  // namespace
 

@@ -15,17 +15,14 @@
 #include "scene/errors.hpp"
 #include "scene/foam.hpp"
 #include "scene/io.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d =
-      fs::temp_directory_path() / ("scene_test_process_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("scene_test_process_" + std::to_string(::getpid()) + "_" + name);
 }
 
 // Text that a shell (or gnuplot) would turn into commands.

@@ -14,6 +14,7 @@
 
 #include "scene/cli.hpp"
 #include "scene/errors.hpp"
+#include "scratch.hpp"
 
 namespace {
 
@@ -21,9 +22,9 @@ namespace {
 template <class F>
 std::string capture_stderr(F body) {
   // One file per test process: ctest runs tests in parallel.
-  const auto path = (std::filesystem::temp_directory_path() /
-                     ("progress_capture_" + std::to_string(::getpid()) + ".txt"))
-                        .string();
+  const auto path =
+      (test_support::scratch_root() / ("progress_capture_" + std::to_string(::getpid()) + ".txt"))
+          .string();
   std::fflush(stderr);
   const int saved = ::dup(2);
   std::FILE* f = std::fopen(path.c_str(), "w");

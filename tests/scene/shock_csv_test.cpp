@@ -12,6 +12,7 @@
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
 #include "scene/units.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
@@ -20,7 +21,7 @@ namespace {
 using scene::kNaN;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() /
+  const fs::path d = test_support::scratch_root() /
                      ("scene_test_shock_csv_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(d);
   fs::create_directories(d);

@@ -9,16 +9,14 @@
 #include <string>
 
 #include "scene/errors.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 std::string fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockgrain_staging_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
+  return test_support::fresh_dir("shockgrain_staging_" + name);
 }
 
 void put(const std::string& path, const std::string& text) {

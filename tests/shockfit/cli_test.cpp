@@ -1,8 +1,8 @@
 // The shockfit executable and its files: outputs of a run, shock.csv read
 // back, and the error paths (exit 2 with a clear message).
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -16,6 +16,7 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/shock_csv.hpp"
+#include "scratch.hpp"
 #include "shockfit/locate.hpp"
 #include "synthetic.hpp"
 
@@ -24,10 +25,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("shockfit_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return test_support::fresh_dir("shockfit_test_" + std::to_string(::getpid()) + "_" + name);
 }
 
 struct Outcome {

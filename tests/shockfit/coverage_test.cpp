@@ -19,6 +19,7 @@
 
 #include "granular/flow_run.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 #include "shockfit/group_interval.hpp"
 #include "shockfit/locate.hpp"
 
@@ -64,7 +65,7 @@ double half_width_of(const shockfit::ShockResult& r) {
 std::vector<SeedValue> run_seeds(const std::string& scene_file, scene::ShockKind kind) {
   scene::Scene s = scene::load_scene(std::string(SOURCE_DIR) + "/tests/data/" + scene_file);
   const fs::path root =
-      fs::temp_directory_path() / ("shockfit_coverage_" + std::to_string(::getpid()));
+      test_support::scratch_root() / ("shockfit_coverage_" + std::to_string(::getpid()));
   std::vector<SeedValue> runs;
   for (int k = 0; k < kSeeds; ++k) {
     s.granular.seed = static_cast<std::uint64_t>(kFirstSeed + k);

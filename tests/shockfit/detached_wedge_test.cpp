@@ -15,6 +15,7 @@
 
 #include "granular/flow_run.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 #include "shockfit/locate.hpp"
 
 namespace {
@@ -34,8 +35,8 @@ shockfit::ShockResult locate_wedge(double mach, double angle_deg, double e) {
   const scene::Scene s = scene::parse_scene(text, "detached_wedge.yaml");
   granular::RunOptions o;
   o.np = 2;
-  o.out_dir = (fs::temp_directory_path() / ("shockfit_detached_" + std::to_string(::getpid())))
-                  .string();
+  o.out_dir =
+      (test_support::scratch_root() / ("shockfit_detached_" + std::to_string(::getpid()))).string();
   const granular::FlowResult g = granular::run_flow_scene(s, o);
   fs::remove_all(o.out_dir);
   return shockfit::locate_shock(s, g.fields);

@@ -14,6 +14,7 @@
 #include "scene/gasdynamics.hpp"
 #include "scene/io.hpp"
 #include "scene/process.hpp"
+#include "scratch.hpp"
 #include "synthetic.hpp"
 
 namespace fs = std::filesystem;
@@ -42,7 +43,7 @@ TEST(PlotSafety, HostileSceneNameIsDrawnNotRun) {
   ASSERT_FALSE(scene::find_program("gnuplot").empty())
       << "gnuplot is required for this test (shockfit draws shock.png with it); install gnuplot 5";
   const fs::path dir =
-      fs::temp_directory_path() / ("shockfit_test_" + std::to_string(::getpid()) + "_hostile");
+      test_support::scratch_root() / ("shockfit_test_" + std::to_string(::getpid()) + "_hostile");
   fs::remove_all(dir);
   fs::create_directories(dir);
   // wedge_M3_10 under the hostile name.

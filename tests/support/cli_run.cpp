@@ -30,13 +30,6 @@ CliRun run_cli(const std::string& exe, const std::string& args) {
   return r;
 }
 
-std::string fresh_dir(const std::string& name) {
-  const fs::path d = fs::path(SCRATCH_DIR) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
-
 std::string write_scene(const std::string& dir, const std::string& text) {
   const std::string path = dir + "/scene.yaml";
   std::ofstream(path) << text;

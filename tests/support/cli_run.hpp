@@ -5,6 +5,8 @@
 // staged or temporary is left behind.
 #include <string>
 
+#include "scratch.hpp"
+
 namespace test_support {
 
 struct CliRun {
@@ -18,8 +20,6 @@ std::string stage_exe(const std::string& name);
 // Runs `EXE ARGS` through the shell (ARGS is test-written text).
 CliRun run_cli(const std::string& exe, const std::string& args);
 
-// An empty folder TMP/NAME (whatever was there is removed first).
-std::string fresh_dir(const std::string& name);
 // DIR/scene.yaml holding TEXT; returns its path.
 std::string write_scene(const std::string& dir, const std::string& text);
 

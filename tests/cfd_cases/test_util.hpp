@@ -1,11 +1,12 @@
 #pragma once
 // Helpers shared by the cfd tests: scenes as text, scratch directories.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace cfd_test {
 
@@ -18,11 +19,8 @@ inline scene::Scene wedge_scene(double mach, double angle_deg, const std::string
 // A fresh directory under the build tree's test scratch area, named for the test.
 inline std::string scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path d = std::filesystem::path(SCRATCH_DIR) / "cfd" /
-                                  (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d.string();
+  return test_support::fresh_dir("cfd/" + std::string(info->test_suite_name()) + "." +
+                                 info->name());
 }
 
 }  // namespace cfd_test

@@ -21,9 +21,7 @@ constexpr double kEnergyTolerance = 1e-10;
 constexpr double kShortRunZTolerance = 0.03;
 
 std::string out_dir(const std::string& name) {
-  const auto d = test_support::scratch_root() / ("granular_engine_" + name);
-  std::filesystem::remove_all(d);
-  return d.string();
+  return test_support::absent_dir("granular_engine_" + name);
 }
 
 RunOptions opts(const std::string& name, const std::string& restart = "", std::uint64_t stop = 0) {

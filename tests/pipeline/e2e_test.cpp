@@ -22,9 +22,7 @@ const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = test_support::scratch_root() / ("pipeline_e2e_" + name);
-  fs::remove_all(d);
-  return d;
+  return test_support::absent_dir("pipeline_e2e_" + name);
 }
 
 int run(const std::string& args) {

@@ -35,9 +35,7 @@ constexpr double kImpossibleTarget = 1e-6;
 constexpr double kSmallBudget = 0.02;
 
 std::string fresh(const std::string& name) {
-  const fs::path d = test_support::scratch_root() / ("shockgrain_precision_" + name);
-  fs::remove_all(d);
-  return d.string();
+  return test_support::absent_dir("shockgrain_precision_" + name);
 }
 
 nlohmann::json predict(const scene::Scene& s, const std::string& name) {

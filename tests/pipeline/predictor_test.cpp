@@ -28,9 +28,7 @@ const std::string kPipeline = std::string(BIN_DIR) + "/pipeline";
 const std::string kData = std::string(SOURCE_DIR) + "/tests/data";
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = test_support::scratch_root() / ("shockgrain_predictor_" + name);
-  fs::remove_all(d);
-  return d;
+  return test_support::absent_dir("shockgrain_predictor_" + name);
 }
 
 int run_cli(const std::string& args) {

@@ -15,6 +15,7 @@
 #include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/scene.hpp"
+#include "scratch.hpp"
 
 namespace {
 using pipeline::RestitutionModel;
@@ -101,9 +102,8 @@ TEST(LocalCorrection, ATableReadBackEvaluatesAsWritten) {
   auto t = table_of(pts, *c);
   pipeline::attach_local_correction(t, lc->bandwidth_log_mach, lc->bandwidth_angle_deg,
                                     lc->loo_rms);
-  const auto dir = std::filesystem::path(SCRATCH_DIR) / "restitution_local";
-  std::filesystem::create_directories(dir);
-  const auto path = (dir / "table.yaml").string();
+  const std::string dir = test_support::fresh_dir("restitution_local");
+  const std::string path = dir + "/table.yaml";
   pipeline::write_calibration(t, path);
   const auto back = pipeline::read_calibration(path);
   ASSERT_TRUE(back.local_correction.has_value());
@@ -135,7 +135,7 @@ TEST(LocalCorrection, ATableReadBackEvaluatesAsWritten) {
   ASSERT_NE(at, std::string::npos);
   const auto end = text.find_first_of(",}", at);
   const std::string broken = text.substr(0, at) + "h_angle_deg: 0" + text.substr(end);
-  const auto bad_path = (dir / "broken.yaml").string();
+  const std::string bad_path = dir + "/broken.yaml";
   std::ofstream(bad_path) << broken;
   try {
     pipeline::read_calibration(bad_path);

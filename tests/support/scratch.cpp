@@ -11,9 +11,14 @@ fs::path scratch_root() {
 }
 
 std::string fresh_dir(const std::string& name) {
+  const std::string d = absent_dir(name);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string absent_dir(const std::string& name) {
   const fs::path d = scratch_root() / name;
   fs::remove_all(d);
-  fs::create_directories(d);
   return d.string();
 }
 

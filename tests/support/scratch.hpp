@@ -11,5 +11,8 @@ namespace test_support {
 std::filesystem::path scratch_root();
 // An empty folder SCRATCH/NAME (whatever was there is removed first).
 std::string fresh_dir(const std::string& name);
+// SCRATCH/NAME with whatever was there removed and nothing made: for a run
+// that makes its own output folder.
+std::string absent_dir(const std::string& name);
 
 }  // namespace test_support

@@ -70,17 +70,6 @@ Binner::Binner(const FlowSetup& f, const scene::Lattice& g)
     : inv_scale_(1.0 / f.scale), x0_(g.x0), y0_(g.y0), inv_dx_(1.0 / g.dx), inv_dy_(1.0 / g.dy),
       nx_(g.nx), ny_(g.ny) {}
 
-std::size_t Binner::cell_of(scene::Vec2 r) const {
-  const double fx = (r.x * inv_scale_ - x0_) * inv_dx_;
-  const double fy = (r.y * inv_scale_ - y0_) * inv_dy_;
-  if (!(fx >= 0.0 && fy >= 0.0)) return npos;
-  // A disk exactly on the far edge belongs to the last cell.
-  const int i = std::min(static_cast<int>(fx), nx_ - 1);
-  const int j = std::min(static_cast<int>(fy), ny_ - 1);
-  if (fx > nx_ || fy > ny_) return npos;
-  return static_cast<std::size_t>(i + nx_ * j);
-}
-
 scene::Lattice make_fields(const FlowSetup& f, const scene::Lattice& geometry,
                            const std::vector<FieldSums>& blocks) {
   scene::Lattice lat = geometry;

@@ -6,6 +6,7 @@
 
 #include "scene/cli.hpp"
 #include "scene/io.hpp"
+#include "snapshot_binning.hpp"
 #include "steady_state.hpp"
 
 namespace granular {
@@ -135,12 +136,10 @@ void FlowReplica::average(long snapshots, std::atomic<double>* progress) {
     advance(t0_ + static_cast<double>(taken_ + 1) * dt_sample_, progress);
     FieldSums& group =
         groups_[static_cast<std::size_t>(taken_ / slice_snapshots_) % groups_.size()];
-    sim_.for_each_particle([&](scene::Vec2 r, scene::Vec2 v) {
-      const std::size_t c = binner_.cell_of(r);
-      if (c != Binner::npos) group.add(c, v);
-    });
-    group.end_snapshot();
-    count_sum_ += static_cast<double>(sim_.stats().particles);
+    // The binning pass counts the disks: stats() would walk them a second time.
+    const std::size_t disks =
+        bin_snapshot(binner_, group, [this](const auto& add) { sim_.for_each_particle(add); });
+    count_sum_ += static_cast<double>(disks);
     ++taken_;
   }
 }

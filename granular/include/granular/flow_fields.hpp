@@ -55,7 +55,8 @@ class FieldSums {
   std::size_t cells_ = 0;
 };
 
-// Bins one snapshot (engine coordinates in, scene lattice) into `sums`.
+// Maps an engine-frame disk centre to its scene lattice cell (bin_snapshot,
+// granular/src/flow/snapshot_binning.hpp, bins a whole snapshot with it).
 class Binner {
  public:
   Binner(const FlowSetup& f, const scene::Lattice& geometry);

@@ -162,17 +162,19 @@ BowTrainingRun bow_training_run(const std::string& run_dir) {
     throw scene::InputError(summary_path +
                             ": key 'prediction.predictor': the run's predictor is not granular");
   double finest = kNaN, grid_cpu = kNaN;
+  std::string finest_case;
   for (const auto& r : sum.value("runs", nlohmann::json::array()))
     if (r.value("family", "") == "uniform" && r.value("steady_state_reached", false)) {
       const double level = number_or_nan(r, "level");
       if (!(finest <= level)) {
         finest = level;
         grid_cpu = number_or_nan(r, "cpu_seconds") + number_or_nan(r, "mesh_cpu_seconds");
+        finest_case = r.value("case", level_name("uniform", level));
       }
     }
   if (!std::isfinite(finest))
     throw scene::InputError(summary_path + ": key 'runs': no uniform grid reached steady state");
-  const std::string gas = run_dir + "/cfd/" + level_name("uniform", finest);
+  const std::string gas = run_dir + "/cfd/" + finest_case;
   return {s,       run_dir, gas + "/shockfit/shock.csv", gas, number_or_nan(pred, "cpu_seconds"),
           grid_cpu};
 }

@@ -91,9 +91,37 @@ double reference_grid_level(const scene::PipelineParams& p) {
   return best;
 }
 
-GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np, std::set<std::string> force,
-                       std::function<void(const std::string&)> on_step)
-    : s_(s), cache_(out_dir), np_(np), force_(std::move(force)), on_step_(std::move(on_step)) {}
+namespace {
+// The stage of a case solved with the robust settings from the start sits
+// beside the scene's own (cfd/NAME, its mesh shared).
+constexpr const char* kRobustSuffix = "_robust";
+
+scene::Scene with_robust_cfd(const scene::Scene& s) {
+  scene::Scene r = s;
+  std::string what;
+  r.cfd = cfd::robust_settings(s.cfd, what);
+  return r;
+}
+}  // namespace
+
+std::string case_scheme(const nlohmann::json& cfd_summary) {
+  const std::string flux = cfd_summary.value("flux_scheme", "");
+  const std::string limiter = cfd_summary.value("limiter", "");
+  return flux.empty() && limiter.empty() ? "" : flux + "/" + limiter;
+}
+
+GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np,
+                       std::set<std::string> force, std::function<void(const std::string&)> on_step)
+    : s_(s),
+      robust_(with_robust_cfd(s)),
+      cache_(out_dir),
+      np_(np),
+      force_(std::move(force)),
+      on_step_(std::move(on_step)) {}
+
+std::string GridRunner::robust_scheme() const {
+  return robust_.cfd.flux_scheme + "/" + robust_.cfd.limiter;
+}
 
 bool GridRunner::forced(const std::string& stage) const { return force_.count(stage) != 0 || force_.count("all") != 0; }
 
@@ -133,18 +161,20 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
 
 // rhoCentralFoam to a measured steady state, cached; the summary gains the
 // solver's CPU seconds (all ranks, as waited-for children).
-nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_mesh) {
-  const std::string mstage = "meshgen/" + name, cstage = "cfd/" + name;
-  const std::string fp = fingerprint({fp_mesh, scene::section_yaml(s_, "cfd"), scene::section_yaml(s_, "freestream")});
+nlohmann::json GridRunner::solve(const std::string& name, const std::string& case_name,
+                                 const scene::Scene& cs, const std::string& fp_mesh) {
+  const std::string mstage = "meshgen/" + name, cstage = "cfd/" + case_name;
+  const std::string fp =
+      fingerprint({fp_mesh, scene::section_yaml(cs, "cfd"), scene::section_yaml(cs, "freestream")});
   if (forced("cfd")) cache_.invalidate(cstage);
   if (cache_.fresh(cstage, fp)) return cache_.result(cstage);
   cache_.invalidate(cstage);
   cfd::CaseOptions co;
   co.np = np_;
   const scene::CpuStopwatch cpu;
-  const auto c = cfd::run_case_with_fallback(s_, cache_.dir(mstage), cache_.dir(cstage), co);
+  const auto c = cfd::run_case_with_fallback(cs, cache_.dir(mstage), cache_.dir(cstage), co);
   const double solver_cpu = cpu.seconds();
-  check_interrupt("cfd " + name);
+  check_interrupt("cfd " + case_name);
   const auto lat = cfd::resample_to_lattice(s_, cache_.dir(cstage), s_.granular.lattice_nx, s_.granular.lattice_ny);
   scene::write_vti(lat, cache_.dir(cstage) + "/fields.vti");
   nlohmann::json csum = c.summary();
@@ -156,8 +186,9 @@ nlohmann::json GridRunner::solve(const std::string& name, const std::string& fp_
 
 // The CFD shock, located like the granular one with the shock window
 // widened to the grid's smeared shock (same rule for every family).
-nlohmann::json GridRunner::locate(const std::string& name, double level, const std::string& fp_cfd) {
-  const std::string cstage = "cfd/" + name, fstage = cstage + "/shockfit";
+nlohmann::json GridRunner::locate(const std::string& case_name, double level,
+                                  const std::string& fp_cfd) {
+  const std::string cstage = "cfd/" + case_name, fstage = cstage + "/shockfit";
   const scene::Scene fs_scene = cfd_shockfit_scene(s_, level * s_.mesh.h_min);
   const std::string fp = fingerprint({fp_cfd, scene::section_yaml(fs_scene, "shockfit")});
   if (!forced("cfd") && cache_.fresh(fstage, fp)) return cache_.result(fstage);
@@ -193,9 +224,10 @@ void GridRunner::drop_foreign_shock(GridRun& run) const {
 }
 
 // A failure to measure is not silent: it becomes the run's note, shown in the report.
-void GridRunner::measure(const std::string& name, const PrimaryError& primary, GridRun& run) const {
+void GridRunner::measure(const std::string& case_name, const PrimaryError& primary,
+                         GridRun& run) const {
   try {
-    const CaseErrors e = measure_case_errors(s_, cache_.dir("cfd/" + name));
+    const CaseErrors e = measure_case_errors(s_, cache_.dir("cfd/" + case_name));
     run.l1_density = e.l1_density.value;
     run.l1_density_ci = e.l1_density.uncertainty;
     run.l1_pressure = e.l1_pressure.value;
@@ -210,12 +242,12 @@ void GridRunner::measure(const std::string& name, const PrimaryError& primary, G
     run.primary_error_ci = std::isfinite(p.uncertainty) ? p.uncertainty : 0.0;
   } catch (const std::exception& ex) {
     run.note = std::string("error measures failed: ") + ex.what();
-    scene::log_line("pipeline: " + name + ": " + run.note, true);
+    scene::log_line("pipeline: " + case_name + ": " + run.note, true);
   }
 }
 
 GridRun GridRunner::run(const std::string& family, double level, const ShockInput& shock,
-                        const PrimaryError& primary) {
+                        const PrimaryError& primary, bool robust) {
   const std::string name = level_name(family, level);
   const nlohmann::json msum = mesh(family, level, shock);
   check_interrupt("meshgen " + name);
@@ -227,13 +259,17 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.mesh_seconds = msum.value("seconds", 0.0);
   run.mesh_cpu_seconds = number_or_nan(msum, "stage_cpu_seconds");
   if (!s_.pipeline.cfd) return run;
-  const nlohmann::json csum = solve(name, msum.value("fingerprint", ""));
-  const nlohmann::json fsum = locate(name, level, csum.value("fingerprint", ""));
+  const std::string case_name = name + (robust ? kRobustSuffix : "");
+  const nlohmann::json csum =
+      solve(name, case_name, robust ? robust_ : s_, msum.value("fingerprint", ""));
+  const nlohmann::json fsum = locate(case_name, level, csum.value("fingerprint", ""));
   run.cfd_wall_seconds = number_or_nan(csum, "wall_seconds");
   run.cfd_cpu_seconds = number_or_nan(csum, "stage_cpu_seconds");
   run.steps = csum.value("steps", 0L);
   run.flow_throughs = number_or_nan(csum, "flow_throughs");
   run.steady = csum.value("steady_state_reached", false);
+  run.scheme = case_scheme(csum);
+  run.case_name = case_name;
   if (csum.contains("fallback") && csum["fallback"].is_string())
     run.note = "diverged; restarted with " + csum["fallback"].get<std::string>();
   run.shock = fsum.value("shock", "none");
@@ -241,8 +277,8 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.value_ci = number_or_nan(fsum, "shock_value_ci");
   drop_foreign_shock(run);
   run.wall_pressure_ratio = number_or_nan(csum, "wall_pressure_ratio");
-  measure(name, primary, run);
-  if (on_step_) on_step_("cfd " + name);
+  measure(case_name, primary, run);
+  if (on_step_) on_step_("cfd " + case_name);
   return run;
 }
 

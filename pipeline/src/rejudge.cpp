@@ -33,6 +33,7 @@ VerdictRun verdict_run(const nlohmann::json& r, const std::string& where) {
   v.error = number_or_nan(r, "primary_error");
   v.error_ci = number_or_nan(r, "primary_error_ci");
   v.steady = r.value("steady_state_reached", false);
+  v.case_name = r.value("case", "");
   return v;
 }
 
@@ -72,7 +73,7 @@ RecordedRuns recorded_runs(const nlohmann::json& s, const std::string& path) {
 void remeasure(const scene::Scene& s, const std::string& run_dir, const PrimaryError& primary,
                std::vector<VerdictRun>& runs, nlohmann::json& errors) {
   for (auto& r : runs) {
-    const std::string name = level_name(r.family, r.level);
+    const std::string name = r.case_name.empty() ? level_name(r.family, r.level) : r.case_name;
     try {
       const MeasuredError m = measure_named(measure_case_errors(s, run_dir + "/cfd/" + name), primary.name);
       r.error = m.value;

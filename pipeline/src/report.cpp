@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "cfd/run_case.hpp"
@@ -64,6 +65,10 @@ std::string grid_name(const GridRun& r) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%s_h%g", r.family.c_str(), r.level);
   return buf;
+}
+// The grid's case under cfd/ (older summaries name none: the grid's name).
+std::string case_name(const GridRun& r) {
+  return r.case_name.empty() ? grid_name(r) : r.case_name;
 }
 
 // Figures that could not be drawn are listed in the report, never dropped silently.
@@ -189,7 +194,7 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
   std::vector<scene::Vec2> cfd_pts;
   std::string cfd_name;
   if (c.clustered_pick >= 0) {
-    cfd_name = grid_name(c.clustered[c.clustered_pick]);
+    cfd_name = case_name(c.clustered[c.clustered_pick]);
     cfd_pts = accepted_points(dir + "/cfd/" + cfd_name + "/shockfit/shock.csv", w);
   }
   std::vector<scene::Vec2> exact;
@@ -236,7 +241,7 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
   for (const auto* fam : {&c.uniform, &c.clustered}) {
     for (const auto& r : *fam) {
       const std::string name = grid_name(r);
-      const std::string case_dir = dir + "/cfd/" + name;
+      const std::string case_dir = dir + "/cfd/" + case_name(r);
       if (fs::exists(case_dir + "/constant/polyMesh")) {
         try {
           // Drawn from the CFD cells themselves: every pixel takes the value
@@ -251,7 +256,7 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
         }
       }
       for (const char* f : {"history.png", "convergence.png"})
-        copy_if_exists(dir + "/cfd/" + name + "/" + f, fig + "/cfd_" + name + "_" + f);
+        copy_if_exists(case_dir + "/" + f, fig + "/cfd_" + name + "_" + f);
       for (const char* f : {"mesh.png", "mesh_zoom.png"})
         copy_if_exists(dir + "/meshgen/" + name + "/" + f, fig + "/mesh_" + name + "_" + f);
     }
@@ -318,6 +323,18 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
           "error; against the finest uniform grid, at least " << format_number(c.speedup_bound, 3) << "x in CFD wall time.\n\n";
 }
 
+// The scheme every grid's result carries, or "mixed (A, B)"; empty without CFD runs.
+std::string comparison_scheme(const Comparison& c) {
+  std::set<std::string> schemes;
+  for (const auto* fam : {&c.uniform, &c.clustered})
+    for (const auto& r : *fam)
+      if (!r.scheme.empty()) schemes.insert(r.scheme);
+  if (schemes.size() <= 1) return schemes.empty() ? "" : *schemes.begin();
+  std::string all;
+  for (const auto& x : schemes) all += (all.empty() ? "" : ", ") + x;
+  return "mixed (" + all + ")";
+}
+
 void runs_table(std::ostringstream& md, const ReportInputs& in) {
   const auto& c = in.comparison;
   const bool angle = in.reference.quantity == "shock_angle_deg";
@@ -335,6 +352,12 @@ void runs_table(std::ostringstream& md, const ReportInputs& in) {
          << format_number(r.value_ci, 2) << " | " << format_number(r.error) << " | "
          << (angle ? format_number(r.wall_pressure_ratio, 4) : format_number(r.stagnation_pressure_ratio, 4)) << " |\n";
   md << "\n";
+  const std::string scheme = comparison_scheme(c);
+  if (scheme.rfind("mixed", 0) == 0)
+    md << "**The grids' results carry different schemes, " << scheme
+       << ": the families' errors mix their truncation errors (see the warnings).**\n\n";
+  else if (!scheme.empty())
+    md << "Every grid's result carries one scheme (flux/limiter): " << scheme << ".\n\n";
 }
 
 // Richardson estimates from the independent reference grid (blunt bodies).
@@ -345,6 +368,7 @@ void convergence_section(std::ostringstream& md, const nlohmann::json& g) {
   md << "Reference grid: uniform, h = " << format_number(ref.value("level", kNaN), 3) << " h_min, "
      << ref.value("cells", 0L) << " cells, CPU " << format_number(ref.value("cpu_seconds", kNaN), 4) << " s, steady "
      << (ref.value("steady_state_reached", false) ? "yes" : "**no**") << " (a member of neither family).\n\n";
+  if (g.contains("scheme_note")) md << "**Note:** " << g.value("scheme_note", "") << ".\n\n";
   if (g.contains("note")) {
     md << g.value("note", "") << ".\n\n";
     return;
@@ -401,6 +425,7 @@ nlohmann::json make_summary(const ReportInputs& in) {
   for (const auto& r : c.uniform) runs.push_back(r.to_json());
   for (const auto& r : c.clustered) runs.push_back(r.to_json());
   j["runs"] = runs;
+  j["scheme"] = comparison_scheme(c);
   return j;
 }
 

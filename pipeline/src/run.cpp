@@ -11,6 +11,7 @@
 #include "pipeline/compare.hpp"
 #include "pipeline/grid_convergence.hpp"
 #include "pipeline/grid_runs.hpp"
+#include "pipeline/one_scheme.hpp"
 #include "pipeline/precision_goal.hpp"
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
@@ -86,7 +87,8 @@ nlohmann::json convergence_json(const GridConvergence& g) {
 // and four times coarser (grid_runs.hpp: reference_grid_level). Null when
 // the scene needs none.
 nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids,
-                               const PrimaryError& primary, const std::vector<GridRun>& uniform) {
+                               const PrimaryError& primary, const std::vector<GridRun>& uniform,
+                               bool robust) {
   const auto& p = s.pipeline;
   if (primary.name == "l1_density" || !p.reference_grid || !p.cfd || p.levels.empty())
     return nullptr;
@@ -94,7 +96,7 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids,
   constexpr double kRatio = 2.0;
   const GridRun* r2 = at_level(uniform, level * kRatio);
   const GridRun* r3 = at_level(uniform, level * kRatio * kRatio);
-  const GridRun ref = grids.run("reference", level, {}, primary);
+  const GridRun ref = grids.run("reference", level, {}, primary, robust);
   nlohmann::json j;
   j["reference_run"] = ref.to_json();
   j["refinement_ratio"] = kRatio;
@@ -102,6 +104,10 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids,
     j["note"] = "no uniform grids at 2x and 4x the reference level: no Richardson triple";
     return j;
   }
+  if (ref.scheme != r2->scheme || ref.scheme != r3->scheme)
+    j["scheme_note"] = "the triple mixes schemes (" + ref.scheme + " on the reference grid, " +
+                       r2->scheme + " and " + r3->scheme +
+                       " below it): its estimates mix their truncation errors";
   j["triple"] = {ref.level, r2->level, r3->level};
   j["standoff"] = convergence_json(richardson(ref.value, r2->value, r3->value, kRatio));
   j["drag_coefficient"] = convergence_json(
@@ -123,7 +129,7 @@ std::vector<VerdictRun> verdict_runs(const std::vector<GridRun>& runs) {
   std::vector<VerdictRun> out;
   for (const auto& r : runs)
     out.push_back({r.family, r.level, r.cells, r.steps, r.cfd_cpu_seconds, r.mesh_cpu_seconds,
-                   r.primary_error, r.primary_error_ci, r.steady});
+                   r.primary_error, r.primary_error_ci, r.steady, r.case_name});
   return out;
 }
 
@@ -430,7 +436,8 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
     if (shock.has_shock)
       fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
   }
-  const nlohmann::json convergence = reference_study(s, grids, primary, fam_u);
+  const bool robust = share_one_scheme(grids, fam_c, fam_u, shock, primary);
+  const nlohmann::json convergence = reference_study(s, grids, primary, fam_u, robust);
 
   // Comparison, verdict and report.
   Reference ref = reference_for(s);

@@ -117,6 +117,50 @@ TEST(EndToEnd, SweepOverRestitutionRunsInParallelAndOrdersTheAngles) {
   EXPECT_TRUE(fs::exists(out / "sweep.csv"));
 }
 
+// A comparison whose grids would otherwise mix schemes (a grid diverged
+// before writing a state and ran robust throughout) is solved on one: the
+// grids that ended on the scene's own scheme are solved again robust and
+// charged both runs; their first cases stay on disk.
+TEST(EndToEnd, StrongObliqueShockComparesGridsOnOneScheme) {
+  const auto out = fresh_dir("one_scheme");
+  const std::string robust = "Tadmor/Minmod";
+  ASSERT_EQ(run("run " + kData + "/wedge_strong_shock.yaml --predictor correlation --np 1 --out " +
+                out.string() + " > /dev/null 2>&1"),
+            0);
+  const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
+  EXPECT_EQ(j.value("scheme", ""), robust);
+  int diverged = 0, solved_again = 0;
+  for (const auto& r : j["runs"]) {
+    const std::string name = r.value("case", "");
+    EXPECT_EQ(r.value("scheme", ""), robust) << name;
+    EXPECT_TRUE(r.value("steady_state_reached", false)) << name;
+    if (r.value("note", "").rfind("diverged; restarted", 0) == 0) ++diverged;
+    const std::string suffix = "_robust";
+    if (name.size() <= suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
+    ++solved_again;
+    const fs::path first = out / "cfd" / name.substr(0, name.size() - suffix.size());
+    ASSERT_TRUE(fs::exists(first / "summary.json")) << first;
+    const auto f = nlohmann::json::parse(scene::read_file((first / "summary.json").string()));
+    EXPECT_EQ(f.value("flux_scheme", ""), "Kurganov") << first;
+    // Charged both runs: more than the robust run alone and than the first.
+    const auto again =
+        nlohmann::json::parse(scene::read_file((out / "cfd" / name / "summary.json").string()));
+    const double charged = r["cpu_seconds"].get<double>();
+    EXPECT_GT(charged, again["cpu_seconds"].get<double>()) << name;
+    EXPECT_GT(charged, f["cpu_seconds"].get<double>()) << name;
+    EXPECT_NE(r.value("note", "").find("charged too"), std::string::npos) << name;
+  }
+  // The case this test is for: some grid fell back, and the others followed it.
+  ASSERT_GE(diverged, 1) << "no grid diverged: the scene no longer exercises the rule";
+  EXPECT_GE(solved_again, 1);
+  EXPECT_EQ(diverged + solved_again, static_cast<int>(j["runs"].size()));
+  EXPECT_NE(
+      scene::read_file((out / "report.md").string()).find("one scheme (flux/limiter): " + robust),
+      std::string::npos);
+}
+
 // The verdict on three levels per family: CPU costs measured for every run,
 // the exact-reference L1 error falling with refinement on uniform grids, the
 // speedups as {value, ci_low, ci_high} and a verdict read from them.

@@ -42,9 +42,16 @@ Families families(double noise, std::uint64_t seed) {
       const long steps = std::lround(20.0 * std::sqrt(static_cast<double>(n)));
       const WorkRun w = exact_run(n, steps);
       const double error = 0.1 * std::pow(static_cast<double>(cells) / 1000.0, -0.5);
-      VerdictRun r{clustered ? "clustered" : "uniform", 1000.0 / static_cast<double>(cells), n, steps,
-                   w.cfd_cpu * std::exp(noise * normal(rng)), w.mesh_cpu * std::exp(noise * normal(rng)), error,
-                   0.0, true};
+      VerdictRun r{clustered ? "clustered" : "uniform",
+                   1000.0 / static_cast<double>(cells),
+                   n,
+                   steps,
+                   w.cfd_cpu * std::exp(noise * normal(rng)),
+                   w.mesh_cpu * std::exp(noise * normal(rng)),
+                   error,
+                   0.0,
+                   true,
+                   ""};
       (clustered ? f.clustered : f.uniform).push_back(r);
     }
   }

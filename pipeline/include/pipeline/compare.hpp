@@ -43,6 +43,12 @@ struct GridRun {
   double shock_axis_deviation_cells = scene::kNaN;  // carbuncle check
   double drag_coefficient = scene::kNaN;
   std::string note;          // what went wrong measuring this run, if anything
+  // The flux and limiter its result carries ("Kurganov/vanLeer"); empty
+  // without a CFD run.
+  std::string scheme;
+  // Its case under cfd/: the grid's name, or with a suffix when it was
+  // solved again with the robust settings (one_scheme.hpp).
+  std::string case_name;
   double cpu_us_per_cell_step() const;
   nlohmann::json to_json() const;
 };

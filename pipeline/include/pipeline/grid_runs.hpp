@@ -45,7 +45,13 @@ class GridRunner {
   // family: "uniform", "reference" (uniform, in neither family) or
   // "clustered..." (around `shock`). Meshes, and unless the scene's
   // pipeline.cfd is false, solves, locates the CFD shock and measures.
-  GridRun run(const std::string& family, double level, const ShockInput& shock, const PrimaryError& primary);
+  // `robust`: solved with the robust settings from the start (cfd::
+  // robust_settings), as its own cached stage beside the scene's run.
+  GridRun run(const std::string& family, double level, const ShockInput& shock,
+              const PrimaryError& primary, bool robust = false);
+
+  // The scheme (flux/limiter) a robust run carries.
+  std::string robust_scheme() const;
 
   // The stage directory of a grid's CFD case and mesh.
   std::string case_dir(const std::string& family, double level) const;
@@ -53,13 +59,16 @@ class GridRunner {
 
  private:
   nlohmann::json mesh(const std::string& family, double level, const ShockInput& shock);
-  nlohmann::json solve(const std::string& name, const std::string& fp_mesh);
-  nlohmann::json locate(const std::string& name, double level, const std::string& fp_cfd);
-  void measure(const std::string& name, const PrimaryError& primary, GridRun& run) const;
+  // `case_name`: the grid's name, with a suffix for a robust run (cfd/CASE_NAME).
+  nlohmann::json solve(const std::string& name, const std::string& case_name,
+                       const scene::Scene& cs, const std::string& fp_mesh);
+  nlohmann::json locate(const std::string& case_name, double level, const std::string& fp_cfd);
+  void measure(const std::string& case_name, const PrimaryError& primary, GridRun& run) const;
   void drop_foreign_shock(GridRun& run) const;
   bool forced(const std::string& stage) const;
 
   const scene::Scene& s_;
+  scene::Scene robust_;  // s_ with the robust cfd settings
   StageCache cache_;
   int np_;
   std::set<std::string> force_;
@@ -67,6 +76,9 @@ class GridRunner {
 };
 
 std::string level_name(const std::string& family, double level);
+
+// The scheme a CFD case summary's result carries: "flux/limiter".
+std::string case_scheme(const nlohmann::json& cfd_summary);
 
 // RunError naming the step when Ctrl-C was pressed: finished stages stay cached.
 void check_interrupt(const std::string& where);

@@ -37,6 +37,7 @@ struct VerdictRun {
   double error = 0;       // primary error
   double error_ci = 0;    // its 95% half-width
   bool steady = false;
+  std::string case_name;  // its case under cfd/ (empty: the grid's name)
 };
 
 struct FamilyFitInfo {

@@ -55,6 +55,8 @@ nlohmann::json GridRun::to_json() const {
           {"drag_coefficient", drag_coefficient},
           {"scheme", scheme},
           {"case", case_name},
+          {"mesh", mesh_name},
+          {"strips", strips},
           {"note", note}};
 }
 

@@ -92,14 +92,15 @@ double reference_grid_level(const scene::PipelineParams& p) {
 }
 
 namespace {
-// The stage of a case solved with the robust settings from the start sits
-// beside the scene's own (cfd/NAME, its mesh shared).
-constexpr const char* kRobustSuffix = "_robust";
-
 scene::Scene with_robust_cfd(const scene::Scene& s) {
   scene::Scene r = s;
   std::string what;
   r.cfd = cfd::robust_settings(s.cfd, what);
+  return r;
+}
+scene::Scene with_isotropic_band(const scene::Scene& s) {
+  scene::Scene r = s;
+  r.mesh.anisotropy = 1.0;
   return r;
 }
 }  // namespace
@@ -114,10 +115,17 @@ GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np
                        std::set<std::string> force, std::function<void(const std::string&)> on_step)
     : s_(s),
       robust_(with_robust_cfd(s)),
+      isotropic_(with_isotropic_band(s)),
+      isotropic_robust_(with_robust_cfd(isotropic_)),
       cache_(out_dir),
       np_(np),
       force_(std::move(force)),
       on_step_(std::move(on_step)) {}
+
+const scene::Scene& GridRunner::scene_for(const GridVariant& v) const {
+  if (v.isotropic) return v.robust ? isotropic_robust_ : isotropic_;
+  return v.robust ? robust_ : s_;
+}
 
 std::string GridRunner::robust_scheme() const {
   return robust_.cfd.flux_scheme + "/" + robust_.cfd.limiter;
@@ -134,23 +142,26 @@ std::string GridRunner::mesh_dir(const std::string& family, double level) const 
 
 // Meshed and cached; meshgen's summary gains the stage's CPU seconds (meshgen
 // in-process, gmsh, checkMesh and gnuplot as children).
-nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock) {
+nlohmann::json GridRunner::mesh(const std::string& family, double level, const ShockInput& shock,
+                                const GridVariant& v) {
+  const scene::Scene& ms = scene_for(v);
   const bool clustered = is_clustered(family);
-  const std::string stage = "meshgen/" + level_name(family, level);
-  const std::string fp = fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(s_, "body"),
-                                      scene::section_yaml(s_, "domain"), scene::section_yaml(s_, "mesh"),
-                                      clustered ? "clustered" : "uniform", std::to_string(level)});
+  const std::string stage = "meshgen/" + level_name(family, level) + v.mesh_suffix();
+  const std::string fp =
+      fingerprint({clustered ? shock.fingerprint : "", scene::section_yaml(ms, "body"),
+                   scene::section_yaml(ms, "domain"), scene::section_yaml(ms, "mesh"),
+                   clustered ? "clustered" : "uniform", std::to_string(level)});
   if (forced("meshgen")) cache_.invalidate(stage);
   if (cache_.fresh(stage, fp)) return cache_.result(stage);
   cache_.invalidate(stage);
   meshgen::MeshRequest req = clustered ? clustered_request(shock, level) : meshgen::MeshRequest{};
   req.uniform = !clustered;
-  req.h_min = s_.mesh.h_min * level;
-  req.h_max = clustered ? s_.mesh.h_max * level : s_.mesh.h_min * level;
+  req.h_min = ms.mesh.h_min * level;
+  req.h_max = clustered ? ms.mesh.h_max * level : ms.mesh.h_min * level;
   // An explicit body size is refined with the other sizes of the ladder.
-  if (clustered && s_.mesh.h_body) req.h_body = *s_.mesh.h_body * level;
+  if (clustered && ms.mesh.h_body) req.h_body = *ms.mesh.h_body * level;
   const scene::CpuStopwatch cpu;
-  const auto m = meshgen::generate_mesh(s_, req, cache_.dir(stage));
+  const auto m = meshgen::generate_mesh(ms, req, cache_.dir(stage));
   nlohmann::json msum = m.summary();
   msum["seconds"] = m.seconds;
   msum["stage_cpu_seconds"] = cpu.seconds();
@@ -161,9 +172,9 @@ nlohmann::json GridRunner::mesh(const std::string& family, double level, const S
 
 // rhoCentralFoam to a measured steady state, cached; the summary gains the
 // solver's CPU seconds (all ranks, as waited-for children).
-nlohmann::json GridRunner::solve(const std::string& name, const std::string& case_name,
+nlohmann::json GridRunner::solve(const std::string& mesh_name, const std::string& case_name,
                                  const scene::Scene& cs, const std::string& fp_mesh) {
-  const std::string mstage = "meshgen/" + name, cstage = "cfd/" + case_name;
+  const std::string mstage = "meshgen/" + mesh_name, cstage = "cfd/" + case_name;
   const std::string fp =
       fingerprint({fp_mesh, scene::section_yaml(cs, "cfd"), scene::section_yaml(cs, "freestream")});
   if (forced("cfd")) cache_.invalidate(cstage);
@@ -247,9 +258,10 @@ void GridRunner::measure(const std::string& case_name, const PrimaryError& prima
 }
 
 GridRun GridRunner::run(const std::string& family, double level, const ShockInput& shock,
-                        const PrimaryError& primary, bool robust) {
+                        const PrimaryError& primary, GridVariant variant) {
   const std::string name = level_name(family, level);
-  const nlohmann::json msum = mesh(family, level, shock);
+  const std::string mesh_name = name + variant.mesh_suffix();
+  const nlohmann::json msum = mesh(family, level, shock, variant);
   check_interrupt("meshgen " + name);
   if (on_step_) on_step_("mesh " + name);
   GridRun run;
@@ -258,10 +270,12 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.cells = msum.value("cells", 0L);
   run.mesh_seconds = msum.value("seconds", 0.0);
   run.mesh_cpu_seconds = number_or_nan(msum, "stage_cpu_seconds");
+  run.mesh_name = mesh_name;
+  run.strips = msum.value("band_strips", 0L) > 0;
   if (!s_.pipeline.cfd) return run;
-  const std::string case_name = name + (robust ? kRobustSuffix : "");
+  const std::string case_name = name + variant.case_suffix();
   const nlohmann::json csum =
-      solve(name, case_name, robust ? robust_ : s_, msum.value("fingerprint", ""));
+      solve(mesh_name, case_name, scene_for(variant), msum.value("fingerprint", ""));
   const nlohmann::json fsum = locate(case_name, level, csum.value("fingerprint", ""));
   run.cfd_wall_seconds = number_or_nan(csum, "wall_seconds");
   run.cfd_cpu_seconds = number_or_nan(csum, "stage_cpu_seconds");
@@ -270,8 +284,10 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   run.steady = csum.value("steady_state_reached", false);
   run.scheme = case_scheme(csum);
   run.case_name = case_name;
-  if (csum.contains("fallback") && csum["fallback"].is_string())
+  if (csum.contains("fallback") && csum["fallback"].is_string()) {
+    run.fell_back = true;
     run.note = "diverged; restarted with " + csum["fallback"].get<std::string>();
+  }
   run.shock = fsum.value("shock", "none");
   run.value = number_or_nan(fsum, "shock_value");
   run.value_ci = number_or_nan(fsum, "shock_value_ci");

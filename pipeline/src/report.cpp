@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <set>
 #include <sstream>
 
 #include "cfd/run_case.hpp"
 #include "json_fields.hpp"
 #include "pipeline/bow_shock_check.hpp"
 #include "pipeline/figures.hpp"
+#include "pipeline/one_scheme.hpp"
 #include "pipeline/plot.hpp"
 #include "scene/body.hpp"
 #include "scene/io.hpp"
@@ -258,7 +258,8 @@ void field_figures(const ReportInputs& in, const std::string& fig, Warnings& w) 
       for (const char* f : {"history.png", "convergence.png"})
         copy_if_exists(case_dir + "/" + f, fig + "/cfd_" + name + "_" + f);
       for (const char* f : {"mesh.png", "mesh_zoom.png"})
-        copy_if_exists(dir + "/meshgen/" + name + "/" + f, fig + "/mesh_" + name + "_" + f);
+        copy_if_exists(dir + "/meshgen/" + (r.mesh_name.empty() ? name : r.mesh_name) + "/" + f,
+                       fig + "/mesh_" + name + "_" + f);
     }
   }
 }
@@ -323,18 +324,6 @@ void verdict_section(std::ostringstream& md, const ReportInputs& in) {
           "error; against the finest uniform grid, at least " << format_number(c.speedup_bound, 3) << "x in CFD wall time.\n\n";
 }
 
-// The scheme every grid's result carries, or "mixed (A, B)"; empty without CFD runs.
-std::string comparison_scheme(const Comparison& c) {
-  std::set<std::string> schemes;
-  for (const auto* fam : {&c.uniform, &c.clustered})
-    for (const auto& r : *fam)
-      if (!r.scheme.empty()) schemes.insert(r.scheme);
-  if (schemes.size() <= 1) return schemes.empty() ? "" : *schemes.begin();
-  std::string all;
-  for (const auto& x : schemes) all += (all.empty() ? "" : ", ") + x;
-  return "mixed (" + all + ")";
-}
-
 void runs_table(std::ostringstream& md, const ReportInputs& in) {
   const auto& c = in.comparison;
   const bool angle = in.reference.quantity == "shock_angle_deg";
@@ -352,12 +341,17 @@ void runs_table(std::ostringstream& md, const ReportInputs& in) {
          << format_number(r.value_ci, 2) << " | " << format_number(r.error) << " | "
          << (angle ? format_number(r.wall_pressure_ratio, 4) : format_number(r.stagnation_pressure_ratio, 4)) << " |\n";
   md << "\n";
-  const std::string scheme = comparison_scheme(c);
-  if (scheme.rfind("mixed", 0) == 0)
-    md << "**The grids' results carry different schemes, " << scheme
-       << ": the families' errors mix their truncation errors (see the warnings).**\n\n";
-  else if (!scheme.empty())
-    md << "Every grid's result carries one scheme (flux/limiter): " << scheme << ".\n\n";
+  const std::string su = family_scheme(c.uniform), sc = family_scheme(c.clustered);
+  if (su.empty() && sc.empty()) return;
+  md << "Schemes (flux/limiter): uniform " << (su.empty() ? "n/a" : su) << ", clustered "
+     << (sc.empty() ? "n/a" : sc) << ".";
+  if (su.rfind("mixed", 0) == 0 || sc.rfind("mixed", 0) == 0)
+    md << " **A family mixes schemes: its errors mix their truncation errors (see the warnings).**";
+  else if (!su.empty() && !sc.empty() && su != sc)
+    md << " The families ran different schemes: each kept the most accurate one that held on all "
+          "its grids, so the "
+          "comparison prices the more dissipative one where a family needed it.";
+  md << "\n\n";
 }
 
 // Richardson estimates from the independent reference grid (blunt bodies).
@@ -425,7 +419,7 @@ nlohmann::json make_summary(const ReportInputs& in) {
   for (const auto& r : c.uniform) runs.push_back(r.to_json());
   for (const auto& r : c.clustered) runs.push_back(r.to_json());
   j["runs"] = runs;
-  j["scheme"] = comparison_scheme(c);
+  j["schemes"] = {{"uniform", family_scheme(c.uniform)}, {"clustered", family_scheme(c.clustered)}};
   return j;
 }
 

@@ -16,6 +16,7 @@
 #include "pipeline/predictor.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/stage_cache.hpp"
+#include "pipeline/strip_fallback.hpp"
 #include "pipeline/studies.hpp"
 #include "pipeline/verdict.hpp"
 #include "scene/body.hpp"
@@ -96,7 +97,9 @@ nlohmann::json reference_study(const scene::Scene& s, GridRunner& grids,
   constexpr double kRatio = 2.0;
   const GridRun* r2 = at_level(uniform, level * kRatio);
   const GridRun* r3 = at_level(uniform, level * kRatio * kRatio);
-  const GridRun ref = grids.run("reference", level, {}, primary, robust);
+  GridVariant variant;
+  variant.robust = robust;
+  const GridRun ref = grids.run("reference", level, {}, primary, variant);
   nlohmann::json j;
   j["reference_run"] = ref.to_json();
   j["refinement_ratio"] = kRatio;
@@ -431,13 +434,22 @@ nlohmann::json run_pipeline(scene::Scene s, const RunOptions& o) {
                  : std::string("found no shock")) +
             "; no clustered grids, no verdict",
         true);
+  GridVariant clustered_variant;
   for (const double level : levels) {
     fam_u.push_back(grids.run("uniform", level, {}, primary));
-    if (shock.has_shock)
-      fam_c.push_back(grids.run(clustered_family(o.predictor), level, shock, primary));
+    if (!shock.has_shock) continue;
+    fam_c.push_back(
+        grids.run(clustered_family(o.predictor), level, shock, primary, clustered_variant));
+    if (!clustered_variant.isotropic && strips_diverged(fam_c.back(), grids.robust_scheme())) {
+      remesh_isotropic(grids, fam_c, shock, primary);
+      clustered_variant.isotropic = true;
+    }
   }
-  const bool robust = share_one_scheme(grids, fam_c, fam_u, shock, primary);
-  const nlohmann::json convergence = reference_study(s, grids, primary, fam_u, robust);
+  one_scheme(grids, fam_c, shock, primary, clustered_variant);
+  one_scheme(grids, fam_u, {}, primary);
+  // The reference grid extends the uniform family: its scheme.
+  const bool uniform_robust = family_scheme(fam_u) == grids.robust_scheme();
+  const nlohmann::json convergence = reference_study(s, grids, primary, fam_u, uniform_robust);
 
   // Comparison, verdict and report.
   Reference ref = reference_for(s);

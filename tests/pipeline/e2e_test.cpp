@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "scene/io.hpp"
@@ -117,48 +119,60 @@ TEST(EndToEnd, SweepOverRestitutionRunsInParallelAndOrdersTheAngles) {
   EXPECT_TRUE(fs::exists(out / "sweep.csv"));
 }
 
-// A comparison whose grids would otherwise mix schemes (a grid diverged
-// before writing a state and ran robust throughout) is solved on one: the
-// grids that ended on the scene's own scheme are solved again robust and
-// charged both runs; their first cases stay on disk.
-TEST(EndToEnd, StrongObliqueShockComparesGridsOnOneScheme) {
+// A strong oblique shock: Kurganov diverges on a clustered grid's
+// shock-aligned strips before any state is written. The clustered family
+// then goes over to the isotropic band (its earlier grids meshed again,
+// charged their strip runs, kept on disk), and each family ends on one
+// scheme: the robust one only where one of its own grids needed it.
+TEST(EndToEnd, StrongObliqueShockMeshesTheClusteredFamilyWithoutStripsAndEachFamilyOnOneScheme) {
   const auto out = fresh_dir("one_scheme");
   const std::string robust = "Tadmor/Minmod";
   ASSERT_EQ(run("run " + kData + "/wedge_strong_shock.yaml --predictor correlation --np 1 --out " +
                 out.string() + " > /dev/null 2>&1"),
             0);
   const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
-  EXPECT_EQ(j.value("scheme", ""), robust);
-  int diverged = 0, solved_again = 0;
+  std::map<std::string, std::set<std::string>> schemes;
+  std::map<std::string, int> fell_back_robust;
+  int remeshed = 0;
   for (const auto& r : j["runs"]) {
-    const std::string name = r.value("case", "");
-    EXPECT_EQ(r.value("scheme", ""), robust) << name;
+    const std::string name = r.value("case", ""), family = r.value("family", "");
+    const std::string scheme = r.value("scheme", "");
+    schemes[family].insert(scheme);
     EXPECT_TRUE(r.value("steady_state_reached", false)) << name;
-    if (r.value("note", "").rfind("diverged; restarted", 0) == 0) ++diverged;
-    const std::string suffix = "_robust";
-    if (name.size() <= suffix.size() ||
-        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
-      continue;
-    ++solved_again;
-    const fs::path first = out / "cfd" / name.substr(0, name.size() - suffix.size());
-    ASSERT_TRUE(fs::exists(first / "summary.json")) << first;
-    const auto f = nlohmann::json::parse(scene::read_file((first / "summary.json").string()));
-    EXPECT_EQ(f.value("flux_scheme", ""), "Kurganov") << first;
-    // Charged both runs: more than the robust run alone and than the first.
+    if (r.value("note", "").find("diverged; restarted") != std::string::npos && scheme == robust)
+      ++fell_back_robust[family];
+    if (family == "uniform") continue;
+    // Every clustered grid has the isotropic band, its strip twin kept.
+    EXPECT_FALSE(r.value("strips", true)) << name;
+    const std::string mesh = r.value("mesh", "");
+    const std::string suffix = "_isotropic";
+    ASSERT_GT(mesh.size(), suffix.size()) << name;
+    ASSERT_EQ(mesh.substr(mesh.size() - suffix.size()), suffix) << name;
+    // Levels after the divergence never had strips; those up to it keep theirs.
+    const std::string strip_grid = mesh.substr(0, mesh.size() - suffix.size());
+    const bool meshed_again =
+        r.value("note", "").find("meshed again with the isotropic band") != std::string::npos;
+    EXPECT_EQ(fs::exists(out / "cfd" / strip_grid / "summary.json"), meshed_again) << strip_grid;
+    if (!meshed_again) continue;
+    ++remeshed;
+    EXPECT_TRUE(fs::exists(out / "meshgen" / strip_grid / "summary.json")) << strip_grid;
+    const auto first = nlohmann::json::parse(
+        scene::read_file((out / "cfd" / strip_grid / "summary.json").string()));
     const auto again =
         nlohmann::json::parse(scene::read_file((out / "cfd" / name / "summary.json").string()));
     const double charged = r["cpu_seconds"].get<double>();
     EXPECT_GT(charged, again["cpu_seconds"].get<double>()) << name;
-    EXPECT_GT(charged, f["cpu_seconds"].get<double>()) << name;
-    EXPECT_NE(r.value("note", "").find("charged too"), std::string::npos) << name;
+    EXPECT_GT(charged, first["cpu_seconds"].get<double>()) << name;
   }
-  // The case this test is for: some grid fell back, and the others followed it.
-  ASSERT_GE(diverged, 1) << "no grid diverged: the scene no longer exercises the rule";
-  EXPECT_GE(solved_again, 1);
-  EXPECT_EQ(diverged + solved_again, static_cast<int>(j["runs"].size()));
-  EXPECT_NE(
-      scene::read_file((out / "report.md").string()).find("one scheme (flux/limiter): " + robust),
-      std::string::npos);
+  // The case this test is for: a strip grid diverged and its family followed it.
+  ASSERT_GE(remeshed, 1) << "no strip grid diverged: the scene no longer exercises the rule";
+  for (const auto& [family, set] : schemes) {
+    ASSERT_EQ(set.size(), 1u) << family << " mixes schemes";
+    EXPECT_EQ(*set.begin() == robust, fell_back_robust[family] > 0) << family;
+    EXPECT_EQ(j["schemes"].value(family == "uniform" ? "uniform" : "clustered", ""), *set.begin());
+  }
+  EXPECT_NE(scene::read_file((out / "report.md").string()).find("Schemes (flux/limiter): uniform "),
+            std::string::npos);
 }
 
 // The verdict on three levels per family: CPU costs measured for every run,

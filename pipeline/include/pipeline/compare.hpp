@@ -46,9 +46,12 @@ struct GridRun {
   // The flux and limiter its result carries ("Kurganov/vanLeer"); empty
   // without a CFD run.
   std::string scheme;
-  // Its case under cfd/: the grid's name, or with a suffix when it was
-  // solved again with the robust settings (one_scheme.hpp).
-  std::string case_name;
+  // Its case under cfd/ and its mesh under meshgen/: the grid's name, with
+  // suffixes where it was meshed or solved again otherwise (grid_runs.hpp:
+  // GridVariant).
+  std::string case_name, mesh_name;
+  bool strips = false;     // its band holds shock-aligned strips (mesh.anisotropy > 1)
+  bool fell_back = false;  // its first attempt diverged (cfd.fallback)
   double cpu_us_per_cell_step() const;
   nlohmann::json to_json() const;
 };

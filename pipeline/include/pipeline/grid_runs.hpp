@@ -35,6 +35,15 @@ struct ShockInput {
 // report shows, or nothing when the kinds agree or no shock was found.
 std::optional<std::string> foreign_shock_note(const scene::Scene& s, const std::string& shock_kind);
 
+// How a grid departs from the scene's own settings, each its own cached
+// stage beside the scene's (the suffix on its name).
+struct GridVariant {
+  bool isotropic = false;  // mesh.anisotropy 1: no shock-aligned strips in the band
+  bool robust = false;     // the robust cfd settings from the start (cfd::robust_settings)
+  std::string mesh_suffix() const { return isotropic ? "_isotropic" : ""; }
+  std::string case_suffix() const { return mesh_suffix() + (robust ? "_robust" : ""); }
+};
+
 class GridRunner {
  public:
   // `force`: stages to rerun (meshgen, cfd, all). `on_step` hears each
@@ -45,10 +54,9 @@ class GridRunner {
   // family: "uniform", "reference" (uniform, in neither family) or
   // "clustered..." (around `shock`). Meshes, and unless the scene's
   // pipeline.cfd is false, solves, locates the CFD shock and measures.
-  // `robust`: solved with the robust settings from the start (cfd::
-  // robust_settings), as its own cached stage beside the scene's run.
+  // `variant`: meshed or solved otherwise than the scene says (GridVariant).
   GridRun run(const std::string& family, double level, const ShockInput& shock,
-              const PrimaryError& primary, bool robust = false);
+              const PrimaryError& primary, GridVariant variant = {});
 
   // The scheme (flux/limiter) a robust run carries.
   std::string robust_scheme() const;
@@ -58,9 +66,12 @@ class GridRunner {
   std::string mesh_dir(const std::string& family, double level) const;
 
  private:
-  nlohmann::json mesh(const std::string& family, double level, const ShockInput& shock);
-  // `case_name`: the grid's name, with a suffix for a robust run (cfd/CASE_NAME).
-  nlohmann::json solve(const std::string& name, const std::string& case_name,
+  nlohmann::json mesh(const std::string& family, double level, const ShockInput& shock,
+                      const GridVariant& v);
+  const scene::Scene& scene_for(const GridVariant& v) const;
+  // Stages meshgen/MESH_NAME and cfd/CASE_NAME: the grid's name with its
+  // variant's suffixes.
+  nlohmann::json solve(const std::string& mesh_name, const std::string& case_name,
                        const scene::Scene& cs, const std::string& fp_mesh);
   nlohmann::json locate(const std::string& case_name, double level, const std::string& fp_cfd);
   void measure(const std::string& case_name, const PrimaryError& primary, GridRun& run) const;
@@ -68,7 +79,8 @@ class GridRunner {
   bool forced(const std::string& stage) const;
 
   const scene::Scene& s_;
-  scene::Scene robust_;  // s_ with the robust cfd settings
+  // s_ with the robust cfd settings, with isotropic bands, and with both.
+  scene::Scene robust_, isotropic_, isotropic_robust_;
   StageCache cache_;
   int np_;
   std::set<std::string> force_;

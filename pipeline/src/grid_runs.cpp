@@ -262,8 +262,8 @@ GridRun GridRunner::run(const std::string& family, double level, const ShockInpu
   const std::string name = level_name(family, level);
   const std::string mesh_name = name + variant.mesh_suffix();
   const nlohmann::json msum = mesh(family, level, shock, variant);
-  check_interrupt("meshgen " + name);
-  if (on_step_) on_step_("mesh " + name);
+  check_interrupt("meshgen " + mesh_name);
+  if (on_step_) on_step_("mesh " + mesh_name);
   GridRun run;
   run.family = family;
   run.level = level;

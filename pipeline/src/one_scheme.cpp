@@ -37,7 +37,10 @@ GridRun charge_first_run(const GridRun& first, GridRun again, const std::string&
   const double charged = first.cfd_cpu_seconds + (own_mesh ? first.mesh_cpu_seconds : 0.0);
   const std::string what = fmt::format("{}; its first run ({}{}, {:.3g} CPU s) is charged too", why,
                                        first.scheme, first.strips ? ", strips" : "", charged);
-  if (own_mesh) again.mesh_cpu_seconds += first.mesh_cpu_seconds;
+  if (own_mesh) {
+    again.mesh_cpu_seconds += first.mesh_cpu_seconds;
+    again.mesh_seconds += first.mesh_seconds;
+  }
   again.cfd_cpu_seconds += first.cfd_cpu_seconds;
   again.cfd_wall_seconds += first.cfd_wall_seconds;
   again.steps += first.steps;

@@ -37,6 +37,9 @@ Progress::Progress(std::string label, double total, std::string unit)
 
 void Progress::update(double done, const std::string& extra) {
   done_ = done;
+  // Work that grew on the way (grids run again after a divergence) ends the
+  // count at 100% rather than past it with a negative ETA.
+  if (total_ > 0 && done > total_) total_ = done;
   if (quiet_) return;
   const auto now = std::chrono::steady_clock::now();
   const double since = std::chrono::duration<double>(now - last_).count();

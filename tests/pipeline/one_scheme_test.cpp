@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "pipeline/strip_fallback.hpp"
 
 using pipeline::GridRun;
@@ -13,9 +15,7 @@ const std::string kRobust = "Tadmor/Minmod";
 
 GridRun run(const std::string& family, double level, const std::string& scheme) {
   GridRun r;
-  r.family = family;
-  r.level = level;
-  r.scheme = scheme;
+  std::tie(r.family, r.level, r.scheme) = std::tie(family, level, scheme);
   return r;
 }
 }  // namespace

@@ -173,6 +173,16 @@ TEST(EndToEnd, StrongObliqueShockMeshesTheClusteredFamilyWithoutStripsAndEachFam
   }
   EXPECT_NE(scene::read_file((out / "report.md").string()).find("Schemes (flux/limiter): uniform "),
             std::string::npos);
+  // The verdict re-measured from the cases the runs name gives the same errors and verdict.
+  ASSERT_EQ(run("verdict " + out.string() + " --remeasure > /dev/null 2>&1"), 0);
+  const auto v = nlohmann::json::parse(scene::read_file((out / "verdict.json").string()));
+  for (const auto& r : j["runs"]) {
+    const auto& e = v["remeasured_errors"][r.value("case", "")];
+    ASSERT_TRUE(e.contains("primary_error")) << r.value("case", "") << " " << e.dump();
+    EXPECT_DOUBLE_EQ(e["primary_error"].get<double>(), r["primary_error"].get<double>())
+        << r.value("case", "");
+  }
+  EXPECT_EQ(v.value("verdict", ""), j.value("verdict", ""));
 }
 
 // The verdict on three levels per family: CPU costs measured for every run,

@@ -349,8 +349,7 @@ void runs_table(std::ostringstream& md, const ReportInputs& in) {
     md << " **A family mixes schemes: its errors mix their truncation errors (see the warnings).**";
   else if (!su.empty() && !sc.empty() && su != sc)
     md << " The families ran different schemes: each kept the most accurate one that held on all "
-          "its grids, so the "
-          "comparison prices the more dissipative one where a family needed it.";
+          "its grids, so the comparison prices the more dissipative one where a family needed it.";
   md << "\n\n";
 }
 

@@ -103,12 +103,15 @@ scene::Scene with_isotropic_band(const scene::Scene& s) {
   r.mesh.anisotropy = 1.0;
   return r;
 }
+
+// One spelling for a case's scheme and the robust one, which are compared.
+std::string scheme_name(const std::string& flux, const std::string& limiter) {
+  return flux.empty() && limiter.empty() ? "" : flux + "/" + limiter;
+}
 }  // namespace
 
 std::string case_scheme(const nlohmann::json& cfd_summary) {
-  const std::string flux = cfd_summary.value("flux_scheme", "");
-  const std::string limiter = cfd_summary.value("limiter", "");
-  return flux.empty() && limiter.empty() ? "" : flux + "/" + limiter;
+  return scheme_name(cfd_summary.value("flux_scheme", ""), cfd_summary.value("limiter", ""));
 }
 
 GridRunner::GridRunner(const scene::Scene& s, const std::string& out_dir, int np,
@@ -128,7 +131,7 @@ const scene::Scene& GridRunner::scene_for(const GridVariant& v) const {
 }
 
 std::string GridRunner::robust_scheme() const {
-  return robust_.cfd.flux_scheme + "/" + robust_.cfd.limiter;
+  return scheme_name(robust_.cfd.flux_scheme, robust_.cfd.limiter);
 }
 
 bool GridRunner::forced(const std::string& stage) const { return force_.count(stage) != 0 || force_.count("all") != 0; }

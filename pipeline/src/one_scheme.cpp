@@ -49,17 +49,17 @@ GridRun charge_first_run(const GridRun& first, GridRun again, const std::string&
   return again;
 }
 
-bool one_scheme(GridRunner& grids, std::vector<GridRun>& family, const ShockInput& shock,
+void one_scheme(GridRunner& grids, std::vector<GridRun>& family, const ShockInput& shock,
                 const PrimaryError& primary, GridVariant base) {
   const std::string robust = grids.robust_scheme();
-  if (!needs_one_scheme(family, robust)) return false;
+  if (!needs_one_scheme(family, robust)) return;
+  base.robust = true;
   scene::log_line("pipeline: some " + family.front().family + " grids ended on " + robust +
                       " after diverging; the family's other grids are solved again with it",
                   true);
   for (GridRun& r : family) {
     if (r.scheme.empty() || r.scheme == robust) continue;
     try {
-      base.robust = true;
       r = charge_first_run(
           r, grids.run(r.family, r.level, shock, primary, base),
           "solved again with " + robust +
@@ -71,7 +71,6 @@ bool one_scheme(GridRunner& grids, std::vector<GridRun>& family, const ShockInpu
       scene::log_line("pipeline: " + level_name(r.family, r.level) + ": " + r.note, true);
     }
   }
-  return true;
 }
 
 }  // namespace pipeline

@@ -50,7 +50,7 @@ struct GridRun {
   // suffixes where it was meshed or solved again otherwise (grid_runs.hpp:
   // GridVariant).
   std::string case_name, mesh_name;
-  bool strips = false;     // its band holds shock-aligned strips (mesh.anisotropy > 1)
+  bool strips = false;     // its band holds shock-aligned strips (meshgen's band_strips > 0)
   bool fell_back = false;  // its first attempt diverged (cfd.fallback)
   double cpu_us_per_cell_step() const;
   nlohmann::json to_json() const;

@@ -25,10 +25,10 @@ bool needs_one_scheme(const std::vector<GridRun>& family, const std::string& rob
 // mesh; noted.
 GridRun charge_first_run(const GridRun& first, GridRun again, const std::string& why);
 
-// The family on one scheme (above); true when it went over to the robust
-// scheme. `base`: how the family's grids were made (the robust runs keep
-// their meshes). A grid whose robust run fails keeps its first run, noted.
-bool one_scheme(GridRunner& grids, std::vector<GridRun>& family, const ShockInput& shock,
+// The family on one scheme (above). `base`: how the family's grids were
+// made (the robust runs keep their meshes). A grid whose robust run fails
+// keeps its first run, noted.
+void one_scheme(GridRunner& grids, std::vector<GridRun>& family, const ShockInput& shock,
                 const PrimaryError& primary, GridVariant base = {});
 
 // The scheme every grid of the family carries, "mixed (A, B)" when they

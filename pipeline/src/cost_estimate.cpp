@@ -170,6 +170,20 @@ double granular_predictor_cpu(const scene::Scene& s) {
 }
 }  // namespace
 
+double clustered_finest_cpu(const scene::Scene& s, double angle_deg, double band_half_angle_deg) {
+  if (!s.body || s.pipeline.levels.empty() || !std::isfinite(angle_deg) ||
+      !std::isfinite(band_half_angle_deg))
+    return scene::kNaN;
+  const double level = *std::min_element(s.pipeline.levels.begin(), s.pipeline.levels.end());
+  const ShockCurve shock = apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
+                                    angle_deg, band_half_angle_deg);
+  try {
+    return grid(s, level_name("clustered", level), level, &shock).cpu_seconds;
+  } catch (const scene::InputError&) {
+    return scene::kNaN;
+  }
+}
+
 BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
                          const std::string& calibration_path) {
   if (predictor != "granular") return {};

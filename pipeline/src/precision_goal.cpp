@@ -6,6 +6,7 @@
 #include <string>
 
 #include "json_fields.hpp"
+#include "pipeline/cost_estimate.hpp"
 #include "pipeline/predictor.hpp"
 #include "scene/body.hpp"
 #include "scene/body_traits.hpp"
@@ -118,6 +119,13 @@ granular::PrecisionGoal band_goal(const scene::Scene& s, double angle_scatter_de
   goal.target_source = source;
   goal.measure = [s](const scene::Lattice& fields, const std::vector<scene::Lattice>& groups) {
     return measure_shock(s, fields, groups, MeasureUnit::degrees);
+  };
+  // The band's cost is the clustered grids' CFD: averaging that narrows the
+  // band by less than its own CPU seconds would save there is not worth it.
+  goal.downstream_cpu = [s, angle_scatter_deg](double angle_deg, double half_width_deg) {
+    if (!std::isfinite(half_width_deg)) return scene::kNaN;
+    return clustered_finest_cpu(s, angle_deg,
+                                band_angle_half_width_deg(half_width_deg, angle_scatter_deg));
   };
   return goal;
 }

@@ -153,6 +153,49 @@ TEST(FlowPrecision, StopsWhenTheIntervalNoLongerShrinks) {
   EXPECT_NEAR(r.summary["averaging_flow_throughs"].get<double>(), 2.5, kFlowThroughTol);
 }
 
+TEST(FlowPrecision, StopsWhenAveragingNoLongerPays) {
+  // Later stages that do not care how wide the interval is: from the goal's
+  // minimum on, the second check in a row at which the next chunk saves them
+  // nothing stops the run (checks at 1.5 and 2 for a minimum of 2), though
+  // the interval still shrinks and the target is far.
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.max_averaging = 8.0;
+  auto calls = std::make_shared<int>(0);
+  granular::PrecisionGoal g = counting_goal(1e-9, calls);
+  g.min_flow_throughs = 2.0;
+  g.downstream_cpu = [](double, double) { return 100.0; };
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "cost");
+  EXPECT_EQ(*calls, 2);
+  EXPECT_NEAR(r.summary["averaging_flow_throughs"].get<double>(), 2.0, kFlowThroughTol);
+  const nlohmann::json& checks = r.summary["precision"]["checks"];
+  ASSERT_EQ(checks.size(), 2u);
+  for (const auto& c : checks) {
+    EXPECT_EQ(c["expected_saving_cpu_seconds"], 0.0);
+    EXPECT_GT(c["next_chunk_cpu_seconds"].get<double>(), 0.0);
+  }
+}
+
+TEST(FlowPrecision, AveragingThatPaysGoesOnToTheCap) {
+  // Later stages that pay far more for width than any chunk costs: no cost
+  // stop; an interval shrinking as 1/checks neither plateaus nor meets the
+  // target, so the cap stops it. The last chunk has no next one to price.
+  scene::Scene s = scene::parse_scene(kSmallWedge);
+  s.granular.max_averaging = 2.5;
+  auto calls = std::make_shared<int>(0);
+  granular::PrecisionGoal g = counting_goal(1e-9, calls);
+  g.downstream_cpu = [](double, double hw) { return 1e9 * hw; };
+  const granular::FlowResult r = granular::run_flow_scene(s, {}, {}, g);
+  EXPECT_EQ(r.summary["stopped_by"], "averaging");
+  EXPECT_NEAR(r.summary["averaging_flow_throughs"].get<double>(), 2.5, kFlowThroughTol);
+  const nlohmann::json& checks = r.summary["precision"]["checks"];
+  ASSERT_EQ(checks.size(), 4u);
+  for (std::size_t k = 0; k + 1 < checks.size(); ++k)
+    EXPECT_GT(checks[k]["expected_saving_cpu_seconds"].get<double>(),
+              checks[k]["next_chunk_cpu_seconds"].get<double>());
+  EXPECT_FALSE(checks[3].contains("expected_saving_cpu_seconds"));
+}
+
 TEST(FlowPrecision, StopsAtTheBudgetOnAnImpossibleTarget) {
   // The first chunk always runs; a budget already spent then stops it.
   scene::Scene s = scene::parse_scene(kSmallWedge);

@@ -72,3 +72,27 @@ TEST(PrecisionStop, AGrowingIntervalIsNoPlateau) {
   for (double t = 3.0; t <= 6.5; t += 0.5) c.push_back({t, 0.06, "standoff"});
   EXPECT_TRUE(granular::interval_plateaued(c));
 }
+
+TEST(PrecisionStop, ExpectedSavingFollowsTheStatisticalNarrowing) {
+  // Later stages whose CPU is linear in the half-width: averaging 1 more
+  // flow-through time after 3 takes the width to sqrt(3/4) of itself.
+  const auto linear = [](double, double hw) { return 10.0 * hw; };
+  EXPECT_NEAR(granular::expected_saving(linear, 20.0, 0.4, 3.0, 1.0),
+              10.0 * 0.4 * (1.0 - std::sqrt(0.75)), 1e-12);
+  // Later stages that do not see the width save nothing.
+  EXPECT_EQ(granular::expected_saving([](double, double) { return 5.0; }, 20.0, 0.4, 3.0, 1.0),
+            0.0);
+  // Nothing priced, nothing averaged yet, or no more averaging: no figure.
+  EXPECT_TRUE(std::isnan(granular::expected_saving({}, 20.0, 0.4, 3.0, 1.0)));
+  EXPECT_TRUE(std::isnan(granular::expected_saving(linear, 20.0, 0.4, 0.0, 1.0)));
+  EXPECT_TRUE(std::isnan(granular::expected_saving(linear, 20.0, 0.4, 3.0, 0.0)));
+}
+
+TEST(PrecisionStop, AChunkPaysUnlessItSavesLessThanItCosts) {
+  EXPECT_TRUE(granular::chunk_pays(2.0, 1.0));
+  EXPECT_TRUE(granular::chunk_pays(1.0, 1.0));
+  EXPECT_FALSE(granular::chunk_pays(0.5, 1.0));
+  EXPECT_FALSE(granular::chunk_pays(0.0, 1e-6));
+  // What cannot be priced is not held against the averaging.
+  EXPECT_TRUE(granular::chunk_pays(std::nan(""), 1.0));
+}

@@ -141,3 +141,24 @@ TEST(PrecisionGoal, PredictAveragesABowShockToItsStandoffTarget) {
   EXPECT_TRUE(scene::parse_scene(std::string(disc) + "granular: {target_half_width: standoff}\n")
                   .granular.target_from_standoff);
 }
+
+TEST(PrecisionGoal, ABandGoalPricesTheFinestClusteredGridByItsBand) {
+  // The model's CPU of the finest clustered grid (h_min 0.01 body lengths
+  // here): meshgen's band is at least 3 h_min either side of the shock, so an
+  // angle interval that makes it no wider (up to 1 deg and beyond here) costs
+  // the same as an exact angle, and a wider one costs more. An angle or width that cannot be placed
+  // is not priced.
+  constexpr double kScatterDeg = 0.12;
+  const granular::PrecisionGoal g =
+      pipeline::precision_goal(wedge("{target_half_width: band}"), kScatterDeg);
+  ASSERT_TRUE(g.downstream_cpu);
+  const auto cpu = [&](double hw) { return g.downstream_cpu(27.0, hw); };
+  EXPECT_GT(cpu(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(cpu(0.5), cpu(0.0));
+  EXPECT_GT(cpu(2.0), cpu(0.5));
+  EXPECT_GT(cpu(4.0), cpu(2.0));
+  EXPECT_TRUE(std::isnan(g.downstream_cpu(std::nan(""), 0.5)));
+  EXPECT_TRUE(std::isnan(g.downstream_cpu(27.0, std::nan(""))));
+  // Goals other than the band's leave the averaging unpriced.
+  EXPECT_FALSE(pipeline::precision_goal(wedge("{target_half_width: mesh}")).downstream_cpu);
+}

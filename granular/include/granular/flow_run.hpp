@@ -66,6 +66,11 @@ struct PrecisionGoal {
   std::function<PrecisionMeasure(const scene::Lattice& fields,
                                  const std::vector<scene::Lattice>& groups)>
       measure;
+  // CPU seconds the later stages are expected to spend when the shock is
+  // known to within `half_width` at `value` (both in the measure's unit);
+  // NaN where that cannot be priced. Empty: averaging is not priced, and
+  // only the target, the plateau, the budget and the cap stop it.
+  std::function<double(double value, double half_width)> downstream_cpu;
   bool active() const { return static_cast<bool>(measure); }
 };
 
@@ -83,8 +88,10 @@ struct PrecisionGoal {
 // checks every kCheckEveryFlowThroughs from kFirstCheckFlowThroughs on, none
 // stopping before the goal's min_flow_throughs),
 // "plateau" (the interval stopped shrinking with averaging time:
-// granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would overrun it at
-// the last chunk's rate) and "averaging" (granular.max_averaging with a goal, else
+// granular/precision_stop.hpp), "cost" (the goal prices the later stages, and on two checks in a
+// row the next chunk's CPU at the last chunk's rate exceeded what its projected narrowing would
+// save them: granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would
+// overrun it at the last chunk's rate) and "averaging" (granular.max_averaging with a goal, else
 // granular.averaging). Every replica keeps its simulation between chunks and snapshot times count
 // from the end of its warm-up, so a run stopped after N flow-through times has the fields of an
 // uninterrupted run with averaging: N (replicas >= 2).

@@ -1,6 +1,7 @@
 #pragma once
 // When precision on demand stops averaging: the goal met, or the shock's
 // interval no longer shrinking with averaging time.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,20 @@ inline constexpr double kGrowthRatio = 1.5;
 // quantity and finite widths. Two, because one interval moves by 10-20%
 // from check to check.
 bool interval_plateaued(const std::vector<PrecisionCheck>& checks);
+
+// Averaging `more` flow-through times beyond `averaged` is expected to take
+// the half-width to half_width sqrt(averaged / (averaged + more)), the
+// statistical 1/sqrt(time), and the later stages' CPU seconds from
+// downstream(value, half_width) to downstream(value, that). Their difference
+// (CPU seconds; NaN where either is NaN or nothing is averaged yet).
+double expected_saving(const std::function<double(double, double)>& downstream, double value,
+                       double half_width, double averaged, double more);
+
+// A chunk pays when what it is expected to save exceeds its own CPU seconds.
+// Averaging stops on the second check in a row at which the next chunk would
+// not pay: the interval moves by 10-20% from check to check, and with it the
+// projected saving. A saving that cannot be priced (NaN) counts as paying.
+inline constexpr int kUnpaidChecksToStop = 2;
+bool chunk_pays(double expected_saving_cpu, double chunk_cpu);
 
 }  // namespace granular

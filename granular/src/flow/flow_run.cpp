@@ -355,6 +355,7 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
   long chunk = chunk_end(0);
 
   AveragingOutcome out;
+  int unpaid = 0;   // checks in a row at which the next chunk would not pay
   pool.average(0);  // the warm-up, so that the first chunk's cost is the averaging's
   double mark = cpu.seconds();
   while (true) {
@@ -390,6 +391,26 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       if (anyone(group, may_stop && interval_plateaued(out.history))) {
         out.stopped_by = "plateau";
         break;
+      }
+      if (goal.downstream_cpu && out.snapshots < cap) {
+        const long next =
+            std::clamp(snapshots_for(boundary + kCheckEveryFlowThroughs), out.snapshots + 1, cap) -
+            out.snapshots;
+        // At this chunk's rate, its check included.
+        const double next_cpu =
+            (cpu.seconds() - mark) * static_cast<double>(next) / static_cast<double>(chunk);
+        const double saving =
+            expected_saving(goal.downstream_cpu, out.last.value, out.last.half_width, averaged,
+                            static_cast<double>(next) * dt / tau);
+        unpaid = chunk_pays(saving, next_cpu) ? 0 : unpaid + 1;
+        nlohmann::json& check = out.checks.back();
+        check["next_chunk_cpu_seconds"] = next_cpu;
+        check["expected_saving_cpu_seconds"] =
+            std::isfinite(saving) ? nlohmann::json(saving) : nlohmann::json(nullptr);
+        if (anyone(group, may_stop && unpaid >= kUnpaidChecksToStop)) {
+          out.stopped_by = "cost";
+          break;
+        }
       }
     }
     if (out.snapshots >= cap) {

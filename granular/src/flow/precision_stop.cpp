@@ -28,4 +28,15 @@ bool interval_plateaued(const std::vector<PrecisionCheck>& checks) {
          stalled(checks, n - 2);
 }
 
+double expected_saving(const std::function<double(double, double)>& downstream, double value,
+                       double half_width, double averaged, double more) {
+  if (!downstream || !(averaged > 0.0) || !(more > 0.0)) return std::nan("");
+  const double narrowed = half_width * std::sqrt(averaged / (averaged + more));
+  return downstream(value, half_width) - downstream(value, narrowed);
+}
+
+bool chunk_pays(double expected_saving_cpu, double chunk_cpu) {
+  return !(expected_saving_cpu < chunk_cpu);
+}
+
 }  // namespace granular

@@ -39,6 +39,14 @@ BandScatter band_scatter(const scene::Scene& s, const std::string& predictor,
 RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
                          const BandScatter& scatter = {});
 
+// The model's CPU seconds (CFD and meshing) of the clustered grid at the
+// finest of pipeline.levels round an attached shock leaving the body's nose
+// at `angle_deg`, its band `band_half_angle_deg` either side: what a
+// narrower band saves, priced while the granular predictor still averages.
+// NaN for a scene without levels, a non-finite angle or width, or a grid
+// meshgen would refuse.
+double clustered_finest_cpu(const scene::Scene& s, double angle_deg, double band_half_angle_deg);
+
 // The table `--dry-run` prints.
 std::string format_estimate(const RunEstimate& e, double budget_cpu_seconds);
 

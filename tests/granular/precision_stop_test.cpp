@@ -82,6 +82,14 @@ TEST(PrecisionStop, ExpectedSavingFollowsTheStatisticalNarrowing) {
   // Later stages that do not see the width save nothing.
   EXPECT_EQ(granular::expected_saving([](double, double) { return 5.0; }, 20.0, 0.4, 3.0, 1.0),
             0.0);
+  // Costs that move in steps: the chunk gets its share of the whole step
+  // between an exact shock and this width, whether or not its own narrowing
+  // crosses it, and a price that falls with the width saves nothing.
+  const auto step = [](double, double hw) { return hw > 0.2 ? 12.0 : 10.0; };
+  EXPECT_NEAR(granular::expected_saving(step, 20.0, 0.4, 3.0, 1.0), 2.0 * (1.0 - std::sqrt(0.75)),
+              1e-12);
+  const auto falling = [](double, double hw) { return 10.0 - hw; };
+  EXPECT_EQ(granular::expected_saving(falling, 20.0, 0.4, 3.0, 1.0), 0.0);
   // Nothing priced, nothing averaged yet, or no more averaging: no figure.
   EXPECT_TRUE(std::isnan(granular::expected_saving({}, 20.0, 0.4, 3.0, 1.0)));
   EXPECT_TRUE(std::isnan(granular::expected_saving(linear, 20.0, 0.4, 0.0, 1.0)));

@@ -35,11 +35,16 @@ inline constexpr double kGrowthRatio = 1.5;
 // from check to check.
 bool interval_plateaued(const std::vector<PrecisionCheck>& checks);
 
-// Averaging `more` flow-through times beyond `averaged` is expected to take
-// the half-width to half_width sqrt(averaged / (averaged + more)), the
-// statistical 1/sqrt(time), and the later stages' CPU seconds from
-// downstream(value, half_width) to downstream(value, that). Their difference
-// (CPU seconds; NaN where either is NaN or nothing is averaged yet).
+// What averaging `more` flow-through times beyond `averaged` is expected to
+// save the later stages, CPU seconds. The most any averaging could save is
+// downstream(value, half_width) - downstream(value, 0), an exact shock's
+// (none where that is negative). The next chunk is expected to take the
+// half-width to half_width sqrt(averaged / (averaged + more)), the
+// statistical 1/sqrt(time), and to save that fraction of the most: a secant,
+// since the later stages' cost moves in steps with the half-width (meshgen
+// cuts its strips where the band doubles), and a difference over one chunk's
+// small narrowing would read the steps, not the trend. NaN where nothing is
+// priced, nothing is averaged yet or either price is NaN.
 double expected_saving(const std::function<double(double, double)>& downstream, double value,
                        double half_width, double averaged, double more);
 

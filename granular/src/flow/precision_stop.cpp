@@ -1,5 +1,6 @@
 #include "granular/precision_stop.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace granular {
@@ -31,8 +32,9 @@ bool interval_plateaued(const std::vector<PrecisionCheck>& checks) {
 double expected_saving(const std::function<double(double, double)>& downstream, double value,
                        double half_width, double averaged, double more) {
   if (!downstream || !(averaged > 0.0) || !(more > 0.0)) return std::nan("");
-  const double narrowed = half_width * std::sqrt(averaged / (averaged + more));
-  return downstream(value, half_width) - downstream(value, narrowed);
+  const double most = downstream(value, half_width) - downstream(value, 0.0);
+  if (std::isnan(most)) return most;
+  return std::max(most, 0.0) * (1.0 - std::sqrt(averaged / (averaged + more)));
 }
 
 bool chunk_pays(double expected_saving_cpu, double chunk_cpu) {

@@ -38,6 +38,11 @@ double shock_position_half_width(const scene::Scene& s, const shockfit::ShockRes
 // wider than a perfectly averaged run's would be, and averaging on buys the
 // grid almost nothing: the clustered grids' CFD speedup on wedge M3/10 did
 // not change between 4 and 16 flow-through times (docs/case_studies.md).
+// The goal also prices its averaging (PrecisionGoal::downstream_cpu, the
+// cost model's finest clustered grid round the band): meshgen widens every
+// band to at least 3 h_min either side, which on default sizes is wider than
+// the angle's band over most of the shock, so averaging stops as soon as a
+// chunk costs more CPU than the narrower band would save.
 inline constexpr double kBandWidening = 0.2;
 // No band stop before this many flow-through times: the shock angle still
 // settles before (wedge M3/10: 23.8, 25.3, 26.2, 26.4 deg at 1-2.5), and from

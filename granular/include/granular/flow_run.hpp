@@ -89,8 +89,8 @@ struct PrecisionGoal {
 // stopping before the goal's min_flow_throughs),
 // "plateau" (the interval stopped shrinking with averaging time:
 // granular/precision_stop.hpp), "cost" (the goal prices the later stages, and on two checks in a
-// row the next chunk's CPU at the last chunk's rate exceeded what its projected narrowing would
-// save them: granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would
+// row the next chunk's CPU at the last chunk's rate exceeded what it was expected to save them:
+// granular/precision_stop.hpp), "budget" (granular.cpu_budget: the next chunk would
 // overrun it at the last chunk's rate) and "averaging" (granular.max_averaging with a goal, else
 // granular.averaging). Every replica keeps its simulation between chunks and snapshot times count
 // from the end of its warm-up, so a run stopped after N flow-through times has the fields of an

@@ -24,6 +24,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// What ended the granular stage's averaging (summary `stopped_by`), in words.
+std::string averaging_stop_words(const std::string& stopped_by) {
+  if (stopped_by == "precision") return "precision: its interval met the target";
+  if (stopped_by == "plateau") return "plateau: its interval stopped shrinking";
+  if (stopped_by == "cost")
+    return "cost: more averaging would have cost more CPU than its narrower band saves the finest "
+           "clustered grid";
+  if (stopped_by == "budget") return "budget: the next chunk would overrun granular.cpu_budget";
+  if (stopped_by == "averaging") return "averaging: the time it was set to average";
+  return stopped_by;
+}
+
 using scene::kDeg;
 using scene::kNaN;
 // Pixels across the CFD pictures: finer than the finest cells of the case
@@ -490,7 +502,7 @@ void write_report(const ReportInputs& in, const nlohmann::json& summary, const s
     };
     md << " The granular stage averaged "
        << format_number(number_or_nan(averaging, "flow_throughs"), 3)
-       << " flow-through times (stopped by " << text("stopped_by")
+       << " flow-through times (stopped by " << averaging_stop_words(text("stopped_by"))
        << (text("target_source").empty() ? std::string() : "; target " + text("target_source"))
        << ").";
   }

@@ -57,6 +57,10 @@ TEST(EndToEnd, SmallWedgeReportsAFiniteVerdict) {
   const auto out = fresh_dir("wedge");
   ASSERT_EQ(run("run " + kData + "/wedge_small.yaml --out " + out.string() + " > /dev/null"), 0);
   ASSERT_TRUE(fs::exists(out / "report.md"));
+  // The report says in words what ended the granular stage's averaging.
+  EXPECT_NE(scene::read_file((out / "report.md").string())
+                .find("(stopped by averaging: the time it was set to average)"),
+            std::string::npos);
   const auto j = nlohmann::json::parse(scene::read_file((out / "summary.json").string()));
   expect_all_finite(j, "summary");
   ASSERT_TRUE(j["clustered"].is_object());

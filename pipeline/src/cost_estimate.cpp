@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -179,9 +180,11 @@ double clustered_finest_cpu(const scene::Scene& s, double angle_deg, double band
   const double level = *std::min_element(s.pipeline.levels.begin(), s.pipeline.levels.end());
   const ShockCurve shock = apex_ray(scene::scene_domain(s), scene::make_body(*s.body).nose,
                                     angle_deg, band_half_angle_deg);
+  // A price is advice to the averaging, never a reason to fail the run it
+  // serves: a grid the model cannot price leaves the averaging unpriced.
   try {
     return grid(s, level_name("clustered", level), level, &shock).cpu_seconds;
-  } catch (const scene::InputError&) {
+  } catch (const std::exception&) {
     return scene::kNaN;
   }
 }

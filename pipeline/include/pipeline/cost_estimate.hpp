@@ -44,7 +44,7 @@ RunEstimate estimate_run(const scene::Scene& s, const std::string& predictor,
 // at `angle_deg`, its band `band_half_angle_deg` either side: what a
 // narrower band saves, priced while the granular predictor still averages.
 // NaN for a scene without levels, a non-finite angle or width, or a grid
-// meshgen would refuse.
+// meshgen would refuse or the model cannot price.
 double clustered_finest_cpu(const scene::Scene& s, double angle_deg, double band_half_angle_deg);
 
 // The table `--dry-run` prints.

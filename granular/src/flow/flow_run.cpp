@@ -349,15 +349,21 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       std::max(kFirstCheckFlowThroughs, goal.min_flow_throughs - kCheckEveryFlowThroughs);
   double boundary = chunked ? (goal.active() ? first_check : kCheckEveryFlowThroughs)
                             : std::numeric_limits<double>::infinity();
-  auto chunk_end = [&](long done) {
-    return std::clamp(std::isfinite(boundary) ? snapshots_for(boundary) : cap, done + 1, cap);
+  // The last snapshot of the chunk after `done` that ends at the check `at`.
+  auto chunk_end = [&](double at, long done) {
+    return std::clamp(std::isfinite(at) ? snapshots_for(at) : cap, done + 1, cap);
   };
-  long chunk = chunk_end(0);
+  long chunk = chunk_end(boundary, 0);
 
   AveragingOutcome out;
   int unpaid = 0;   // checks in a row at which the next chunk would not pay
   pool.average(0);  // the warm-up, so that the first chunk's cost is the averaging's
   double mark = cpu.seconds();
+  // CPU seconds of `snapshots` more at the rate of the chunk just averaged,
+  // its check included (`now`: the CPU clock read after the check).
+  auto at_chunk_rate = [&](double now, long snapshots) {
+    return (now - mark) * static_cast<double>(snapshots) / static_cast<double>(chunk);
+  };
   while (true) {
     pool.average(chunk);
     out.snapshots += chunk;
@@ -394,11 +400,8 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       }
       if (goal.downstream_cpu && out.snapshots < cap) {
         const long next =
-            std::clamp(snapshots_for(boundary + kCheckEveryFlowThroughs), out.snapshots + 1, cap) -
-            out.snapshots;
-        // At this chunk's rate, its check included.
-        const double next_cpu =
-            (cpu.seconds() - mark) * static_cast<double>(next) / static_cast<double>(chunk);
+            chunk_end(boundary + kCheckEveryFlowThroughs, out.snapshots) - out.snapshots;
+        const double next_cpu = at_chunk_rate(cpu.seconds(), next);
         const double saving =
             expected_saving(goal.downstream_cpu, out.last.value, out.last.half_width, averaged,
                             static_cast<double>(next) * dt / tau);
@@ -418,10 +421,9 @@ AveragingOutcome average(ReplicaPool& pool, const scene::GranularParams& p, cons
       break;
     }
     boundary += kCheckEveryFlowThroughs;
-    const long next = chunk_end(out.snapshots) - out.snapshots;
+    const long next = chunk_end(boundary, out.snapshots) - out.snapshots;
     const double now = cpu.seconds();
-    // The next chunk at this chunk's rate (its check included).
-    const double next_cost = (now - mark) * static_cast<double>(next) / static_cast<double>(chunk);
+    const double next_cost = at_chunk_rate(now, next);
     mark = now;
     if (anyone(group, p.cpu_budget && now + next_cost > *p.cpu_budget)) {
       out.stopped_by = "budget";

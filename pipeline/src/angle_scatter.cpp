@@ -41,8 +41,10 @@ bool is_training_point(const CalibrationTable& t, double mach, double angle_deg)
   });
 }
 
-// The wedge the scene describes, refused where it cannot judge the table.
-void check_unseen_wedge(const std::string& path, const scene::Scene& s, const CalibrationTable& t) {
+// The wedge the scene describes, refused where it cannot judge the table;
+// true when its Mach number lies beyond the training range (the error then
+// measured is the extrapolation's).
+bool check_unseen_wedge(const std::string& path, const scene::Scene& s, const CalibrationTable& t) {
   if (!s.body || s.body->kind != scene::BodyKind::wedge)
     throw scene::InputError(path + ": key 'body.kind': expected a wedge");
   const double mach = s.freestream.mach, angle = s.body->angle_deg;
@@ -53,10 +55,11 @@ void check_unseen_wedge(const std::string& path, const scene::Scene& s, const Ca
     throw scene::InputError(path + ": a case study's wedge: the case studies are predictions");
   const auto m = training_mach_range(t);
   const auto a = training_angle_range(t);
-  if (!m || !a || !m->contains(mach) || !a->contains(angle))
+  if (!m || !a || !a->contains(angle))
     throw scene::InputError(path +
-                            ": outside the table's training ranges: its error is an "
+                            ": outside the table's training deflections: its error is an "
                             "extrapolation's, not the table's");
+  return !m->contains(mach);
 }
 
 AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, double gas,
@@ -64,7 +67,7 @@ AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, doub
   const std::string scene_path =
       (seed_dir.parent_path() / (seed_dir.filename().string() + ".yaml")).string();
   const scene::Scene s = scene::load_scene(scene_path);
-  check_unseen_wedge(scene_path, s, t);
+  const bool beyond = check_unseen_wedge(scene_path, s, t);
   const std::string sum_path = (seed_dir / "summary.json").string();
   const nlohmann::json j = read_run_summary(sum_path, "no summary (an unfinished run?)");
   if (j.value("shock", "") != "attached")
@@ -83,6 +86,8 @@ AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, doub
   r.half_width = number_or_nan(j, "shock_angle_ci_deg");
   r.gas = gas;
   r.flow_throughs = number_or_nan(d.value("averaging", nlohmann::json::object()), "flow_throughs");
+  r.mach = s.freestream.mach;
+  r.beyond_mach = beyond;
   if (!std::isfinite(r.angle) || !std::isfinite(r.half_width))
     throw scene::InputError(sum_path + ": key 'shock_angle_ci_deg': no angle with an interval");
   return r;
@@ -114,6 +119,11 @@ AngleScatter angle_scatter_of(const std::vector<AngleCheckRun>& runs) {
   a.flow_throughs = averaging[averaging.size() / 2];
   a.runs = static_cast<int>(runs.size());
   a.wedges = static_cast<int>(wedges.size());
+  const auto [lo, hi] = std::minmax_element(
+      runs.begin(), runs.end(),
+      [](const AngleCheckRun& x, const AngleCheckRun& y) { return x.mach < y.mach; });
+  a.mach_low = lo->mach;
+  a.mach_high = hi->mach;
   return a;
 }
 
@@ -143,12 +153,33 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
                               format_number(r.flow_throughs) + " flow-through times, " +
                               runs.front().wedge + " " + format_number(runs.front().flow_throughs) +
                               ": the scatter belongs to one averaging");
+  // Inside the ranges, the table's own error; beyond its Mach range, the
+  // extrapolation's, on one side: one measure never mixes them.
+  const auto range = training_mach_range(table);
+  const auto side = [&](const AngleCheckRun& r) {
+    return !r.beyond_mach ? 0 : r.mach > range->high ? 1 : -1;
+  };
+  for (const AngleCheckRun& r : runs)
+    if (side(r) != side(runs.front()))
+      throw scene::InputError(
+          "calibrate: --angle-check-runs: " + r.wedge + " (Mach " + format_number(r.mach) +
+          ") and " + runs.front().wedge + " (Mach " + format_number(runs.front().mach) +
+          ") lie on different sides of the training Mach range " + format_number(range->low) + "-" +
+          format_number(range->high) +
+          ": the table's error inside it and the extrapolation's beyond it are measured apart");
   const AngleScatter a = angle_scatter_of(runs);
-  table.angle_scatter = a;
+  const bool beyond = runs.front().beyond_mach;
+  (beyond ? table.angle_scatter_beyond : table.angle_scatter) = a;
   write_calibration(table, path);
-  return {{"table", path},        {"angle_scatter_deg", a.deg},
-          {"rms_deg", a.rms_deg}, {"flow_throughs", a.flow_throughs},
-          {"runs", a.runs},       {"wedges", a.wedges}};
+  return {{"table", path},
+          {"block", beyond ? "angle_scatter_beyond_mach" : "angle_scatter"},
+          {"angle_scatter_deg", a.deg},
+          {"rms_deg", a.rms_deg},
+          {"flow_throughs", a.flow_throughs},
+          {"runs", a.runs},
+          {"wedges", a.wedges},
+          {"mach_low", a.mach_low},
+          {"mach_high", a.mach_high}};
 }
 
 }  // namespace pipeline

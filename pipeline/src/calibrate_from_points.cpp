@@ -1,11 +1,15 @@
-// `pipeline calibrate --from-points FILE`: the e(M[, theta]) fit trained on
-// crossings measured elsewhere (the `crossings` of `pipeline parametric`'s
-// parametric_calibration.json), with no granular run. The table records
-// where its points came from: a calibration holds only for the granular
-// settings its points were measured with.
+// `pipeline calibrate --from-points FILE...`: the e(M[, theta]) fit trained
+// on crossings measured elsewhere, with no granular run: the `crossings` of
+// `pipeline parametric`'s parametric_calibration.json, the `points` of a
+// `pipeline calibrate` run's calibration.json, or the entries of a table
+// (YAML). Several sources join into one training set, so a table can be
+// extended by the crossings of new training wedges without rerunning its
+// own. The table records where its points came from: a calibration holds
+// only for the granular settings its points were measured with.
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <vector>
 
 #include "pipeline/calibration.hpp"
@@ -28,55 +32,129 @@ bool is_case_study(double mach, double angle_deg) {
     if (std::abs(mach - c[0]) < kSame && std::abs(angle_deg - c[1]) < kSame) return true;
   return false;
 }
-}  // namespace
+// Two sources giving the same wedge: the tolerance on (Mach, angle).
+constexpr double kSameWedge = 1e-9;
 
-nlohmann::json calibrate_from_points(const std::string& points_path, const std::string& table_path) {
-  if (!std::filesystem::is_regular_file(points_path))
-    throw scene::InputError(points_path + ": --from-points file not found");
+struct Source {
+  std::vector<CalibrationEntry> crossings;
+  double cpu_seconds = std::nan("");
+};
+
+CalibrationEntry crossing(double mach, double angle_deg, double e, double ci,
+                          double gas_angle_deg) {
+  CalibrationEntry c;
+  c.mach = mach;
+  c.angle_deg = angle_deg;
+  c.restitution = e;
+  c.restitution_ci = ci;
+  // The out-of-sample checks belonged to the run or fit that made them.
+  c.gas_angle_deg = gas_angle_deg;
+  c.granular_angle_deg = c.granular_angle_ci_deg = c.loo_restitution = scene::kNaN;
+  return c;
+}
+
+// A table's entries: its crossings at the digits it holds.
+Source table_source(const std::string& path) {
+  Source s;
+  const auto t = read_calibration(path);
+  for (const auto& e : t.entries)
+    s.crossings.push_back(
+        crossing(e.mach, e.angle_deg, e.restitution, e.restitution_ci, e.gas_angle_deg));
+  s.cpu_seconds = t.cpu_seconds;
+  if (s.crossings.empty())
+    throw scene::InputError(path + ": key 'entries': the table holds no crossings");
+  return s;
+}
+
+// parametric_calibration.json (`crossings`) or calibrate's calibration.json
+// (`points`; a training wedge whose sweep found no crossing has none).
+Source json_source(const std::string& path) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(scene::read_file(points_path));
+    j = nlohmann::json::parse(scene::read_file(path));
   } catch (const nlohmann::json::exception& e) {
-    throw scene::InputError(points_path + ": not JSON: " + e.what());
+    throw scene::InputError(path + ": not JSON: " + e.what());
   }
-  if (!j.contains("crossings") || !j["crossings"].is_array())
-    throw scene::InputError(points_path + ": key 'crossings': expected an array of {mach, angle_deg, restitution, "
-                                          "restitution_ci} (pipeline parametric writes one)");
-  std::vector<RestitutionPoint> pts;
-  CalibrationTable table;
-  int skipped = 0;
-  for (const auto& c : j["crossings"]) {
+  const char* key = j.contains("crossings") ? "crossings" : "points";
+  if (!j.contains(key) || !j[key].is_array())
+    throw scene::InputError(
+        path +
+        ": key 'crossings': expected an array of {mach, angle_deg, restitution, "
+        "restitution_ci} (pipeline parametric writes one; pipeline calibrate's "
+        "calibration.json has them as 'points')");
+  Source s;
+  for (const auto& c : j[key]) {
     auto num = [&](const char* k) {
       if (!c.contains(k) || !c[k].is_number())
-        throw scene::InputError(points_path + ": key 'crossings[].'" + std::string(k) + ": expected a number");
+        throw scene::InputError(path + ": key '" + key + "[]." + k + "': expected a number");
       return c[k].get<double>();
     };
-    const RestitutionPoint p{num("mach"), num("angle_deg"), num("restitution"), num("restitution_ci")};
-    if (is_case_study(p.mach, p.angle_deg)) {
-      ++skipped;
-      continue;
-    }
-    if (!(p.restitution > 0 && p.restitution <= 1))
-      throw scene::InputError(points_path + ": key 'crossings[].restitution': outside (0, 1]");
-    pts.push_back(p);
-    CalibrationEntry e;
-    e.mach = p.mach;
-    e.angle_deg = p.angle_deg;
-    e.restitution = p.restitution;
-    e.restitution_ci = p.restitution_ci;
-    e.gas_angle_deg = e.granular_angle_deg = e.granular_angle_ci_deg = scene::kNaN;
-    table.entries.push_back(e);
+    if (std::string(key) == "points" && (!c.contains("restitution") || c["restitution"].is_null()))
+      continue;  // no crossing on this wedge
+    const double gas = c.contains("gas_angle_deg") && c["gas_angle_deg"].is_number()
+                           ? c["gas_angle_deg"].get<double>()
+                           : scene::kNaN;
+    s.crossings.push_back(
+        crossing(num("mach"), num("angle_deg"), num("restitution"), num("restitution_ci"), gas));
+    if (!(s.crossings.back().restitution > 0 && s.crossings.back().restitution <= 1))
+      throw scene::InputError(path + ": key '" + key + "[].restitution': outside (0, 1]");
   }
+  const auto& cpu = j.contains("cpu_seconds") ? j["cpu_seconds"] : nlohmann::json();
+  if (cpu.is_number())
+    s.cpu_seconds = cpu.get<double>();
+  else if (cpu.is_object() && cpu.contains("total") && cpu["total"].is_number())
+    s.cpu_seconds = cpu["total"].get<double>();
+  return s;
+}
+
+Source read_source(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw scene::InputError(path + ": --from-points file not found");
+  const auto ext = std::filesystem::path(path).extension().string();
+  return ext == ".yaml" || ext == ".yml" ? table_source(path) : json_source(path);
+}
+}  // namespace
+
+nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
+                                     const std::string& table_path) {
+  if (sources.empty()) throw scene::InputError("calibrate: --from-points needs at least one file");
+  std::vector<RestitutionPoint> pts;
+  std::vector<std::string> origin;  // the source of each point, to name a wedge given twice
+  CalibrationTable table;
+  int skipped = 0;
+  double cpu = 0;
+  for (const auto& path : sources) {
+    const Source s = read_source(path);
+    cpu += s.cpu_seconds;  // NaN when any source does not record it
+    for (const auto& c : s.crossings) {
+      if (is_case_study(c.mach, c.angle_deg)) {
+        ++skipped;
+        continue;
+      }
+      for (std::size_t k = 0; k < pts.size(); ++k)
+        if (std::abs(pts[k].mach - c.mach) < kSameWedge &&
+            std::abs(pts[k].angle_deg - c.angle_deg) < kSameWedge) {
+          std::ostringstream m;
+          m << path << ": the wedge M" << c.mach << " / " << c.angle_deg << " deg is also in "
+            << origin[k] << ": each training wedge once";
+          throw scene::InputError(m.str());
+        }
+      pts.push_back({c.mach, c.angle_deg, c.restitution, c.restitution_ci});
+      origin.push_back(path);
+      table.entries.push_back(c);
+    }
+  }
+  std::string names;
+  for (const auto& p : sources) names += (names.empty() ? "" : ", ") + p;
   const auto choice = choose_restitution_model(pts);
   if (!choice)
-    throw scene::RunError(points_path + ": " + std::to_string(pts.size()) +
+    throw scene::RunError(names + ": " + std::to_string(pts.size()) +
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
   const auto local = keep_local_correction(table, pts);
-  // What the crossings cost to measure, when the points file records it.
-  table.cpu_seconds = j.contains("cpu_seconds") && j["cpu_seconds"].is_number() ? j["cpu_seconds"].get<double>()
-                                                                                 : std::nan("");
+  // What the crossings cost to measure, when every source records it.
+  table.cpu_seconds = cpu;
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;
   table.bow_shock = bow_shock_kept_by_wedge_fit(out);
   write_calibration(table, out);
@@ -87,7 +165,7 @@ nlohmann::json calibrate_from_points(const std::string& points_path, const std::
                       {"residual_sd", choice->fit().residual_sd},
                       {"loo_rms", choice->fit().loo_rms},
                       {"table", out},
-                      {"source", points_path},
+                      {"source", sources},
                       {"bow_shock_kept", table.bow_shock.has_value()},
                       {"local_correction", local_correction_json(local)}};
   return r;

@@ -413,18 +413,34 @@ CalibrationTable read_calibration(const std::string& path) {
       }
       t.bow_shock = w;
     }
-    if (const auto a = root["angle_scatter"]) {
+    const auto read_scatter = [&](const char* key) -> std::optional<AngleScatter> {
+      const auto a = root[key];
+      if (!a) return std::nullopt;
+      const std::string k = key;
       if (!a.IsMap() || !a["deg"])
-        bad(path, a, "angle_scatter", "expected a map {deg, rms_deg, flow_throughs, runs, wedges}");
+        bad(path, a, k, "expected a map {deg, rms_deg, flow_throughs, runs, wedges}");
       AngleScatter w;
       w.deg = a["deg"].as<double>();
       if (!(std::isfinite(w.deg) && w.deg >= 0))
-        bad(path, a["deg"], "angle_scatter.deg", "expected a finite number >= 0");
+        bad(path, a["deg"], k + ".deg", "expected a finite number >= 0");
       w.rms_deg = optional_number(a, "rms_deg", kNaN);
       w.flow_throughs = optional_number(a, "flow_throughs", kNaN);
       w.runs = a["runs"] ? a["runs"].as<int>() : 0;
       w.wedges = a["wedges"] ? a["wedges"].as<int>() : 0;
-      t.angle_scatter = w;
+      w.mach_low = optional_number(a, "mach_low", kNaN);
+      w.mach_high = optional_number(a, "mach_high", kNaN);
+      return w;
+    };
+    t.angle_scatter = read_scatter("angle_scatter");
+    t.angle_scatter_beyond = read_scatter("angle_scatter_beyond_mach");
+    if (t.angle_scatter_beyond) {
+      const auto& b = *t.angle_scatter_beyond;
+      const auto range = training_mach_range(t);
+      const bool one_side = range && b.mach_low <= b.mach_high &&
+                            (b.mach_low > range->high || b.mach_high < range->low);
+      if (!one_side)
+        bad(path, root["angle_scatter_beyond_mach"], "angle_scatter_beyond_mach",
+            "expected mach_low <= mach_high, both on one side of the training Mach range");
     }
     if (const auto tp = root["training_points"]) {
       if (!tp.IsSequence() || tp.size() != t.entries.size())
@@ -497,17 +513,23 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
     e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
   }
-  if (const auto& a = t.angle_scatter) {
+  const auto write_scatter = [&](const char* key, const AngleScatter& a) {
     e.SetDoublePrecision(kCoefficientDigits);
-    e << YAML::Key << "angle_scatter" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
-      << "deg" << YAML::Value << a->deg;
-    if (std::isfinite(a->rms_deg)) e << YAML::Key << "rms_deg" << YAML::Value << a->rms_deg;
-    if (std::isfinite(a->flow_throughs))
-      e << YAML::Key << "flow_throughs" << YAML::Value << a->flow_throughs;
-    e << YAML::Key << "runs" << YAML::Value << a->runs << YAML::Key << "wedges" << YAML::Value
-      << a->wedges << YAML::EndMap;
+    e << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "deg"
+      << YAML::Value << a.deg;
+    if (std::isfinite(a.rms_deg)) e << YAML::Key << "rms_deg" << YAML::Value << a.rms_deg;
+    if (std::isfinite(a.flow_throughs))
+      e << YAML::Key << "flow_throughs" << YAML::Value << a.flow_throughs;
+    e << YAML::Key << "runs" << YAML::Value << a.runs << YAML::Key << "wedges" << YAML::Value
+      << a.wedges;
+    if (std::isfinite(a.mach_low) && std::isfinite(a.mach_high))
+      e << YAML::Key << "mach_low" << YAML::Value << a.mach_low << YAML::Key << "mach_high"
+        << YAML::Value << a.mach_high;
+    e << YAML::EndMap;
     e.SetDoublePrecision(kEntryDigits);
-  }
+  };
+  if (t.angle_scatter) write_scatter("angle_scatter", *t.angle_scatter);
+  if (t.angle_scatter_beyond) write_scatter("angle_scatter_beyond_mach", *t.angle_scatter_beyond);
   e << YAML::Key << "entries" << YAML::Value << YAML::BeginSeq;
   for (const auto& c : t.entries) {
     e << YAML::Flow << YAML::BeginMap << YAML::Key << "mach" << YAML::Value << c.mach << YAML::Key
@@ -539,6 +561,9 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# angle_scatter (if present): the table's own angle error on unseen wedges at\n"
             "# the default averaging, from `pipeline calibrate --angle-check-runs`; it widens\n"
             "# attached bands in place of the leave-one-out estimate.\n"
+            "# angle_scatter_beyond_mach (if present): the same error on unseen wedges\n"
+            "# beyond the training Mach range (e(M) extrapolated); attached wedges on\n"
+            "# that side take it.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");
@@ -562,6 +587,21 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
     ++n;
   }
   return n >= 2 ? std::sqrt(ss / n) : kNaN;
+}
+
+bool beyond_scatter_applies(const CalibrationTable& t, double mach) {
+  if (!t.angle_scatter_beyond) return false;
+  const auto range = training_mach_range(t);
+  if (!range || range->contains(mach)) return false;
+  const bool measured_above = t.angle_scatter_beyond->mach_low > range->high;
+  return measured_above == (mach > range->high);
+}
+
+double table_angle_scatter_deg(const CalibrationTable& t, double mach) {
+  const double inside = table_angle_scatter_deg(t);
+  if (!beyond_scatter_applies(t, mach)) return inside;
+  const double beyond = t.angle_scatter_beyond->deg;
+  return std::isfinite(inside) ? std::max(inside, beyond) : beyond;
 }
 
 double table_angle_scatter_deg(const CalibrationTable& t) {

@@ -102,10 +102,11 @@ int main(int argc, char** argv) {
         ->add_option("--refine", co.refinements,
                      "runs that bisect the bracketing e interval after the sweep")
         ->check(CLI::NonNegativeNumber);
-    std::string from_points;
+    std::vector<std::string> from_points;
     calib->add_option("--from-points", from_points,
-                      "fit from measured crossings instead of running (pipeline parametric's "
-                      "parametric_calibration.json); --out is then not needed");
+                      "fit from measured crossings instead of running: pipeline parametric's "
+                      "parametric_calibration.json, a calibrate run's calibration.json, or a table "
+                      "(.yaml), several joined; --out is then not needed");
     std::vector<std::string> bow_runs;
     calib->add_option("--bow-shock-runs", bow_runs,
                       "finished `pipeline run` directories of blunt training bodies (no case study): "

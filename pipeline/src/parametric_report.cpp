@@ -566,7 +566,7 @@ std::string training_section(const std::string& out_dir) {
         "out, by the command as well as by the study) without running anything, with the same models and "
         "leave-one-out choice as `pipeline calibrate`. ";
   try {
-    const Json fit = calibrate_from_points(out_dir + "/parametric_calibration.json",
+    const Json fit = calibrate_from_points({out_dir + "/parametric_calibration.json"},
                                            out_dir + "/calibration_from_points.yaml");
     md << "On this study (" << fit["points"].get<std::size_t>() << " crossings) it chooses "
        << fit["model"].get<std::string>() << " (coefficients";

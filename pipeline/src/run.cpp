@@ -170,6 +170,17 @@ std::string outside_warning(const std::string& subject, const char* range_name, 
   return "; WARNING: " + subject + " lies outside " + range_name + " " + shortest(r.low) + "-" +
          shortest(r.high) + unit + ", so " + consequence;
 }
+// What the band takes where the table measured its extrapolation's error.
+std::string extrapolation_measured(const AngleScatter& b, double mach) {
+  char deg[32];
+  std::snprintf(deg, sizeof deg, "%.3f", b.deg);
+  std::string out = std::string("the band takes the extrapolation's own angle error, ") + deg +
+                    " deg, measured on " + std::to_string(b.wedges) + " unseen wedges at Mach " +
+                    shortest(b.mach_low) + "-" + shortest(b.mach_high);
+  if (!MachRange{b.mach_low, b.mach_high}.contains(mach))
+    out += ", not at this Mach number: " + std::string(kUnmeasuredError);
+  return out;
+}
 // The deflection a wedge fit can match: a wedge's whose gas shock is attached.
 std::optional<double> attached_wedge_angle_deg(const scene::Scene& s) {
   if (scene::shock_may_stand_off(s)) return std::nullopt;
@@ -211,7 +222,7 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   // gets it and the predictor uses it on a shock it finds detached: blunt
   // bodies, a wedge beyond its maximum deflection, and a wedge just below it,
   // where the granular gas's shock detaches first.
-  const double scatter = wedge_deg ? table_angle_scatter_deg(t) : kNaN;
+  const double scatter = wedge_deg ? table_angle_scatter_deg(t, s.freestream.mach) : kNaN;
   // A shape that runs at the law may have its fold measured: its stations are
   // corrected and its band takes the corrected stations' left-out scatter.
   const BowStationBias* bias =
@@ -241,8 +252,12 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
   const bool outside = range && !range->contains(s.freestream.mach);
   const std::string held = *e >= kMaxRestitution ? " past the elastic limit and held at e = 1" : "";
   if (outside)
-    note += outside_warning("Mach " + shortest(s.freestream.mach), "the table's training range",
-                            *range, "", "e(M) is extrapolated" + held + " and " + kUnmeasuredError);
+    note += outside_warning(
+        "Mach " + shortest(s.freestream.mach), "the table's training range", *range, "",
+        "e(M) is extrapolated" + held + " and " +
+            (!shape && wedge_deg && beyond_scatter_applies(t, s.freestream.mach)
+                 ? extrapolation_measured(*t.angle_scatter_beyond, s.freestream.mach)
+                 : std::string(kUnmeasuredError)));
   // A fit in the deflection extrapolates beyond the training wedges too
   // (1/theta grows fast below them).
   const auto angles = training_angle_range(t);

@@ -11,8 +11,10 @@
 #include <string>
 
 #include "pipeline/calibration.hpp"
+#include "pipeline/run.hpp"
 #include "scene/errors.hpp"
 #include "scene/io.hpp"
+#include "scene/scene.hpp"
 #include "scratch.hpp"
 
 namespace fs = std::filesystem;
@@ -127,11 +129,87 @@ TEST(AngleScatter, RefusesRunsThatCannotJudgeTheTable) {
   // A case study (Mach 3, 10 deg).
   write_wedge(d / "case", 3.0, 10.0, table_e(t, 3.0, 10.0), 12, 0.3, 0.392);
   refused(d / "case", "case study");
-  // Outside the training ranges (Mach 7).
-  write_wedge(d / "outside", 7.0, 12.0, table_e(t, 7.0, 12.0), 12, 0.3, 0.392);
-  refused(d / "outside", "training ranges");
+  // Outside the training deflections (4 deg).
+  write_wedge(d / "outside", 4.0, 4.0, table_e(t, 4.0, 4.0), 12, 0.3, 0.392);
+  refused(d / "outside", "training deflections");
+  // Inside and beyond the training Mach range in one measure.
+  write_wedge(d / "mixed", 3.3, 15.5, table_e(t, 3.3, 15.5), 6, 0.3, 0.392);
+  write_wedge(d / "mixed", 7.0, 12.0, table_e(t, 7.0, 12.0), 6, 0.3, 0.392);
+  refused(d / "mixed", "different sides");
   // Too few runs.
   write_wedge(d / "few", 3.3, 15.5, table_e(t, 3.3, 15.5), 5, 0.3, 0.392);
   refused(d / "few", "at least");
   refused(d / "missing", "no such directory");
+}
+
+// Beyond the training Mach range e(M) is extrapolated: runs there measure the
+// extrapolation's error, kept in a block of its own that only wedges on that
+// side of the range take, never narrower than the table's own.
+TEST(AngleScatter, BeyondTheMachRangeIsMeasuredApartAndTakenThereOnly) {
+  const fs::path d = fresh("beyond");
+  const std::string table = (d / "calibration.yaml").string();
+  fs::copy_file(kSource + "/pipeline/calibration.yaml", table);
+  const pipeline::CalibrationTable t = pipeline::read_calibration(table);
+  const auto range = pipeline::training_mach_range(t);
+  ASSERT_TRUE(range.has_value());
+  const double inside = pipeline::table_angle_scatter_deg(t);
+  const fs::path runs = d / "runs";
+  const double wedges[4][2] = {{range->high + 0.5, 12.5},
+                               {range->high + 1.0, 15.5},
+                               {range->high + 1.5, 9.5},
+                               {range->high + 2.0, 18.5}};
+  // Errors +-0.6 deg with half-widths 1.96 x 0.2: sqrt(0.36 - 0.04).
+  for (const auto& w : wedges) write_wedge(runs, w[0], w[1], table_e(t, w[0], w[1]), 3, 0.6, 0.392);
+  const nlohmann::json r = pipeline::calibrate_angle_scatter({runs.string()}, table);
+  EXPECT_EQ(r["block"], "angle_scatter_beyond_mach");
+  const pipeline::CalibrationTable after = pipeline::read_calibration(table);
+  ASSERT_TRUE(after.angle_scatter_beyond);
+  EXPECT_NEAR(after.angle_scatter_beyond->deg, std::sqrt(0.36 - 0.04), 1e-9);
+  EXPECT_DOUBLE_EQ(after.angle_scatter_beyond->mach_low, range->high + 0.5);
+  EXPECT_DOUBLE_EQ(after.angle_scatter_beyond->mach_high, range->high + 2.0);
+  // The inside block is untouched and still serves inside the range and below it.
+  ASSERT_TRUE(after.angle_scatter);
+  EXPECT_NEAR(after.angle_scatter->deg, t.angle_scatter->deg, kTol);
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, 0.5 * (range->low + range->high)), inside,
+              kTol);
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, range->low - 0.3), inside, kTol);
+  EXPECT_FALSE(pipeline::beyond_scatter_applies(after, range->high));
+  // Above the range, and beyond the runs' own Mach numbers too.
+  EXPECT_TRUE(pipeline::beyond_scatter_applies(after, range->high + 0.1));
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, range->high + 0.1),
+              after.angle_scatter_beyond->deg, kTol);
+  EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, range->high + 5.0),
+              after.angle_scatter_beyond->deg, kTol);
+
+  // A run there says what its band took, and where that was measured.
+  const auto applied = [&](double mach) {
+    std::ostringstream text;
+    text << "body: {kind: wedge, angle_deg: 12}\nfreestream: {mach: " << mach << "}\n";
+    auto s = scene::parse_scene(text.str());
+    return pipeline::apply_calibration(s, table);
+  };
+  const auto measured = applied(range->high + 1.0);
+  EXPECT_TRUE(measured.outside_training_mach);
+  EXPECT_NEAR(measured.angle_scatter_deg, after.angle_scatter_beyond->deg, kTol);
+  EXPECT_NE(measured.note.find("the extrapolation's own angle error"), std::string::npos)
+      << measured.note;
+  EXPECT_EQ(measured.note.find("unmeasured"), std::string::npos) << measured.note;
+  const auto further = applied(range->high + 3.0);  // beyond the runs' own Mach numbers
+  EXPECT_NE(further.note.find("not at this Mach number"), std::string::npos) << further.note;
+  EXPECT_NEAR(applied(0.5 * (range->low + range->high)).angle_scatter_deg, inside, kTol);
+
+  // A block whose runs do not lie beyond the range is refused, naming the key.
+  std::string text = scene::read_file(table);
+  const std::string low = "mach_low: ";
+  const auto at = text.find(low, text.find("\nangle_scatter_beyond_mach:"));
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, text.find(',', at) - at, "mach_low: 3");
+  scene::write_file_atomic(table, text);
+  try {
+    pipeline::read_calibration(table);
+    ADD_FAILURE() << "a beyond block inside the range was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("angle_scatter_beyond_mach"), std::string::npos)
+        << e.what();
+  }
 }

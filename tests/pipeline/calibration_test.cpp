@@ -361,7 +361,7 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
   j["crossings"].push_back(
       {{"mach", 3.0}, {"angle_deg", 10.0}, {"restitution", 0.5}, {"restitution_ci", 0.002}});
   scene::write_file_atomic((dir / "points.json").string(), j.dump());
-  const auto r = pipeline::calibrate_from_points((dir / "points.json").string(),
+  const auto r = pipeline::calibrate_from_points({(dir / "points.json").string()},
                                                  (dir / "table.yaml").string());
   EXPECT_EQ(r["points"].get<int>(), 10);
   EXPECT_EQ(r["case_studies_left_out"].get<int>(), 1);
@@ -375,7 +375,7 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
                              std::filesystem::copy_options::overwrite_existing);
   const auto before = pipeline::read_calibration(shipped);
   ASSERT_TRUE(before.bow_shock && before.bow_shock->restitution_law);
-  const auto k = pipeline::calibrate_from_points((dir / "points.json").string(), shipped);
+  const auto k = pipeline::calibrate_from_points({(dir / "points.json").string()}, shipped);
   EXPECT_TRUE(k["bow_shock_kept"].get<bool>());
   const auto after = pipeline::read_calibration(shipped);
   ASSERT_TRUE(after.bow_shock.has_value());
@@ -388,7 +388,59 @@ TEST(Calibration, FromPointsFitsAndLeavesTheCaseStudiesOut) {
   EXPECT_FALSE(after.angle_scatter.has_value());
 
   scene::write_file_atomic((dir / "bad.json").string(), "{\"crossings\": 3}");
-  EXPECT_THROW(pipeline::calibrate_from_points((dir / "bad.json").string(), ""), scene::InputError);
-  EXPECT_THROW(pipeline::calibrate_from_points((dir / "missing.json").string(), ""),
+  EXPECT_THROW(pipeline::calibrate_from_points({(dir / "bad.json").string()}, ""),
                scene::InputError);
+  EXPECT_THROW(pipeline::calibrate_from_points({(dir / "missing.json").string()}, ""),
+               scene::InputError);
+}
+
+// A table extended by new training wedges: its own entries joined with the
+// points of a calibrate run (its calibration.json), fitted as one set; the
+// same wedge from two sources is refused, naming both.
+TEST(Calibration, FromPointsJoinsATableWithNewTrainingWedges) {
+  const auto dir = test_support::scratch_root() / "calib_from_points_join";
+  std::filesystem::create_directories(dir);
+  const auto law = [](double m) { return 0.95 + 0.2 / (m * m); };
+  nlohmann::json low;
+  low["crossings"] = nlohmann::json::array();
+  for (const double m : {2.5, 3.5, 4.5})
+    for (const double a : {8.0, 14.0})
+      low["crossings"].push_back(
+          {{"mach", m}, {"angle_deg", a}, {"restitution", law(m)}, {"restitution_ci", 0.002}});
+  scene::write_file_atomic((dir / "low.json").string(), low.dump());
+  const auto first = (dir / "first.yaml").string();
+  pipeline::calibrate_from_points({(dir / "low.json").string()}, first);
+
+  // calibrate's own output: `points`, one wedge without a crossing (null).
+  nlohmann::json high;
+  high["cpu_seconds"] = {{"total", 12.5}};
+  high["points"] = nlohmann::json::array();
+  for (const double a : {8.0, 14.0})
+    high["points"].push_back({{"mach", 7.0},
+                              {"angle_deg", a},
+                              {"gas_angle_deg", 20.0},
+                              {"restitution", law(7.0)},
+                              {"restitution_ci", 0.002}});
+  high["points"].push_back(
+      {{"mach", 8.0}, {"angle_deg", 8.0}, {"restitution", nullptr}, {"restitution_ci", nullptr}});
+  scene::write_file_atomic((dir / "high.json").string(), high.dump());
+
+  const auto joined = (dir / "joined.yaml").string();
+  const auto r = pipeline::calibrate_from_points({first, (dir / "high.json").string()}, joined);
+  EXPECT_EQ(r["points"].get<int>(), 8);
+  const auto t = pipeline::read_calibration(joined);
+  ASSERT_EQ(t.entries.size(), 8u);
+  EXPECT_DOUBLE_EQ(pipeline::training_mach_range(t)->high, 7.0);
+  EXPECT_NEAR(*pipeline::interpolate_restitution(t, 6.0, 11.0), law(6.0), 1e-6);
+  // The first table's out-of-sample checks belonged to its own fit.
+  EXPECT_TRUE(std::isnan(t.entries.front().loo_restitution));
+
+  try {
+    pipeline::calibrate_from_points({first, (dir / "low.json").string()},
+                                    (dir / "twice.yaml").string());
+    ADD_FAILURE() << "a wedge given twice was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("also in " + first), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "twice.yaml"));
 }

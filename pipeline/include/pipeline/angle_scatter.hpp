@@ -17,6 +17,8 @@ struct AngleCheckRun {
   std::string wedge;
   double angle = scene::kNaN, half_width = scene::kNaN, gas = scene::kNaN;
   double flow_throughs = scene::kNaN;
+  double mach = scene::kNaN;  // free stream
+  bool beyond_mach = false;   // beyond the table's training Mach range
 };
 
 // sqrt(mean error^2 - mean (half-width / 1.96)^2), floored at zero, over the
@@ -27,9 +29,12 @@ AngleScatter angle_scatter_of(const std::vector<AngleCheckRun>& runs);
 // `pipeline calibrate --angle-check-runs DIR...`: reads every DIR/oos_*/
 // (gas/summary.json and seed*/summary.json of `pipeline predict`), refuses
 // (InputError naming the file) a run not at the table's e, a training point,
-// a case study, a wedge outside the training ranges, a run whose shock is not
-// attached or runs of differing averaging, and writes the block into the
-// table at table_path (default: the built-in one), keeping everything else.
+// a case study, a wedge outside the training deflections, a run whose shock
+// is not attached, runs of differing averaging, and runs on different sides
+// of the training Mach range, and writes the block into the table at
+// table_path (default: the built-in one), keeping everything else: runs
+// inside the Mach range give `angle_scatter`, runs all beyond it on one side
+// `angle_scatter_beyond_mach`.
 // Runs nothing. Returns the figures.
 nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
                                        const std::string& table_path);

@@ -174,6 +174,9 @@ struct AngleScatter {
   double rms_deg = scene::kNaN;        // the runs' RMS error, their own noise included
   double flow_throughs = scene::kNaN;  // the runs' averaging
   int runs = 0, wedges = 0;
+  // The runs' free-stream Mach numbers; NaN in tables written before they
+  // were recorded.
+  double mach_low = scene::kNaN, mach_high = scene::kNaN;
 };
 
 struct CalibrationTable {
@@ -192,6 +195,10 @@ struct CalibrationTable {
   double cpu_seconds = scene::kNaN;
   std::optional<BowShockScatter> bow_shock;
   std::optional<AngleScatter> angle_scatter;
+  // The same error measured where e(M) is extrapolated: unseen wedges all on
+  // one side of the training Mach range (inside its deflections). Attached
+  // wedges on that side take it in their band; a new fit drops it too.
+  std::optional<AngleScatter> angle_scatter_beyond;
 };
 
 // Sets the chosen model's local correction at these bandwidths, its
@@ -225,6 +232,12 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t);
 // intervals over-state their noise: 0.10 deg from them against 0.16-0.18
 // measured on unseen wedges at 16.) NaN where neither is.
 double table_angle_scatter_deg(const CalibrationTable& t);
+// The scatter a wedge at this Mach number takes: `angle_scatter_beyond` where
+// the Mach number lies beyond the training range on the side that block was
+// measured (never narrower than the inside scatter), else the one above.
+double table_angle_scatter_deg(const CalibrationTable& t, double mach);
+// Whether `angle_scatter_beyond` is what a wedge at this Mach number takes.
+bool beyond_scatter_applies(const CalibrationTable& t, double mach);
 
 // The Mach-only fit that bodies without a wedge angle take: the bow block's
 // recorded law, else the chosen model when it ignores the angle, else the

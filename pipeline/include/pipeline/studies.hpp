@@ -63,10 +63,13 @@ struct CalibrateOptions {
   bool verify = true;
 };
 nlohmann::json run_calibration(const CalibrateOptions& o);
-// The same fit from crossings measured elsewhere (`crossings` of pipeline
-// parametric's parametric_calibration.json), no granular run; the case
-// studies are left out. Writes the table (default: the built-in one).
-nlohmann::json calibrate_from_points(const std::string& points_path, const std::string& table_path);
+// The same fit from crossings measured elsewhere, no granular run: the
+// `crossings` of pipeline parametric's parametric_calibration.json, the
+// `points` of a calibrate run's calibration.json, or a table's entries
+// (.yaml), joined; a wedge given twice is an error, the case studies are left
+// out. Writes the table (default: the built-in one).
+nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
+                                     const std::string& table_path);
 
 struct StudiesOptions {
   std::string out_dir;

@@ -210,15 +210,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       row["restitution_ci"] = e_ci;
       point_row.push_back(rows.size());
       points.push_back({mach, theta, e, e_ci});
-      CalibrationEntry c;
-      c.mach = mach;
-      c.angle_deg = theta;
-      c.restitution = e;
-      c.restitution_ci = e_ci;
-      c.gas_angle_deg = gas;
-      c.granular_angle_deg = kNaN;
-      c.granular_angle_ci_deg = kNaN;
-      table.entries.push_back(c);
+      table.entries.push_back(crossing_entry(mach, theta, e, e_ci, gas));
     } else {
       row["restitution"] = nullptr;
       row["note"] = "the granular angle does not cross the gas angle over the swept e";

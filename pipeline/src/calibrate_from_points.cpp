@@ -40,26 +40,13 @@ struct Source {
   double cpu_seconds = std::nan("");
 };
 
-CalibrationEntry crossing(double mach, double angle_deg, double e, double ci,
-                          double gas_angle_deg) {
-  CalibrationEntry c;
-  c.mach = mach;
-  c.angle_deg = angle_deg;
-  c.restitution = e;
-  c.restitution_ci = ci;
-  // The out-of-sample checks belonged to the run or fit that made them.
-  c.gas_angle_deg = gas_angle_deg;
-  c.granular_angle_deg = c.granular_angle_ci_deg = c.loo_restitution = scene::kNaN;
-  return c;
-}
-
 // A table's entries: its crossings at the digits it holds.
 Source table_source(const std::string& path) {
   Source s;
   const auto t = read_calibration(path);
   for (const auto& e : t.entries)
     s.crossings.push_back(
-        crossing(e.mach, e.angle_deg, e.restitution, e.restitution_ci, e.gas_angle_deg));
+        crossing_entry(e.mach, e.angle_deg, e.restitution, e.restitution_ci, e.gas_angle_deg));
   s.cpu_seconds = t.cpu_seconds;
   if (s.crossings.empty())
     throw scene::InputError(path + ": key 'entries': the table holds no crossings");
@@ -94,8 +81,8 @@ Source json_source(const std::string& path) {
     const double gas = c.contains("gas_angle_deg") && c["gas_angle_deg"].is_number()
                            ? c["gas_angle_deg"].get<double>()
                            : scene::kNaN;
-    s.crossings.push_back(
-        crossing(num("mach"), num("angle_deg"), num("restitution"), num("restitution_ci"), gas));
+    s.crossings.push_back(crossing_entry(num("mach"), num("angle_deg"), num("restitution"),
+                                         num("restitution_ci"), gas));
     if (!(s.crossings.back().restitution > 0 && s.crossings.back().restitution <= 1))
       throw scene::InputError(path + ": key '" + key + "[].restitution': outside (0, 1]");
   }

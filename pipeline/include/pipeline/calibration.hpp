@@ -51,6 +51,19 @@ struct CalibrationEntry {
   // the crossing e.
   double loo_restitution = scene::kNaN;
 };
+// A training wedge's crossing before any out-of-sample check has measured it
+// (those fields NaN).
+inline CalibrationEntry crossing_entry(double mach, double angle_deg, double e, double e_ci,
+                                       double gas_angle_deg) {
+  CalibrationEntry c;
+  c.mach = mach;
+  c.angle_deg = angle_deg;
+  c.restitution = e;
+  c.restitution_ci = e_ci;
+  c.gas_angle_deg = gas_angle_deg;
+  c.granular_angle_deg = c.granular_angle_ci_deg = c.loo_restitution = scene::kNaN;
+  return c;
+}
 
 // A blunt shape's own restitution, e = c0 + c1/M^2: one e(M) does not
 // serve wedges, discs and capsules alike (the wedge fit stands a disc's bow

@@ -41,10 +41,9 @@ bool is_training_point(const CalibrationTable& t, double mach, double angle_deg)
   });
 }
 
-// The wedge the scene describes, refused where it cannot judge the table;
-// true when its Mach number lies beyond the training range (the error then
-// measured is the extrapolation's).
-bool check_unseen_wedge(const std::string& path, const scene::Scene& s, const CalibrationTable& t) {
+// The wedge the scene describes, refused where it cannot judge the table (a
+// Mach number beyond the training range measures the extrapolation's error).
+void check_unseen_wedge(const std::string& path, const scene::Scene& s, const CalibrationTable& t) {
   if (!s.body || s.body->kind != scene::BodyKind::wedge)
     throw scene::InputError(path + ": key 'body.kind': expected a wedge");
   const double mach = s.freestream.mach, angle = s.body->angle_deg;
@@ -59,7 +58,6 @@ bool check_unseen_wedge(const std::string& path, const scene::Scene& s, const Ca
     throw scene::InputError(path +
                             ": outside the table's training deflections: its error is an "
                             "extrapolation's, not the table's");
-  return !m->contains(mach);
 }
 
 AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, double gas,
@@ -67,7 +65,7 @@ AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, doub
   const std::string scene_path =
       (seed_dir.parent_path() / (seed_dir.filename().string() + ".yaml")).string();
   const scene::Scene s = scene::load_scene(scene_path);
-  const bool beyond = check_unseen_wedge(scene_path, s, t);
+  check_unseen_wedge(scene_path, s, t);
   const std::string sum_path = (seed_dir / "summary.json").string();
   const nlohmann::json j = read_run_summary(sum_path, "no summary (an unfinished run?)");
   if (j.value("shock", "") != "attached")
@@ -87,7 +85,6 @@ AngleCheckRun read_run(const fs::path& wedge_dir, const fs::path& seed_dir, doub
   r.gas = gas;
   r.flow_throughs = number_or_nan(d.value("averaging", nlohmann::json::object()), "flow_throughs");
   r.mach = s.freestream.mach;
-  r.beyond_mach = beyond;
   if (!std::isfinite(r.angle) || !std::isfinite(r.half_width))
     throw scene::InputError(sum_path + ": key 'shock_angle_ci_deg': no angle with an interval");
   return r;
@@ -157,7 +154,7 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
   // extrapolation's, on one side: one measure never mixes them.
   const auto range = training_mach_range(table);
   const auto side = [&](const AngleCheckRun& r) {
-    return !r.beyond_mach ? 0 : r.mach > range->high ? 1 : -1;
+    return range->contains(r.mach) ? 0 : r.mach > range->high ? 1 : -1;
   };
   for (const AngleCheckRun& r : runs)
     if (side(r) != side(runs.front()))
@@ -168,7 +165,7 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
           format_number(range->high) +
           ": the table's error inside it and the extrapolation's beyond it are measured apart");
   const AngleScatter a = angle_scatter_of(runs);
-  const bool beyond = runs.front().beyond_mach;
+  const bool beyond = side(runs.front()) != 0;
   (beyond ? table.angle_scatter_beyond : table.angle_scatter) = a;
   write_calibration(table, path);
   return {{"table", path},

@@ -14,6 +14,7 @@
 
 #include "pipeline/calibration.hpp"
 #include "pipeline/calibration_report.hpp"
+#include "pipeline/calibration_training.hpp"
 #include "pipeline/restitution_fit.hpp"
 #include "pipeline/run.hpp"
 #include "pipeline/studies.hpp"
@@ -26,14 +27,11 @@ namespace pipeline {
 namespace {
 // The case studies are predictions, never training points.
 bool is_case_study(double mach, double angle_deg) {
-  constexpr double kSame = 1e-9;
-  const double cases[][2] = {{3, 10}, {4, 15}, {5, 20}};
+  const WedgePoint cases[] = {{3, 10}, {4, 15}, {5, 20}};
   for (const auto& c : cases)
-    if (std::abs(mach - c[0]) < kSame && std::abs(angle_deg - c[1]) < kSame) return true;
+    if (same_wedge({mach, angle_deg}, c)) return true;
   return false;
 }
-// Two sources giving the same wedge: the tolerance on (Mach, angle).
-constexpr double kSameWedge = 1e-9;
 
 struct Source {
   std::vector<CalibrationEntry> crossings;
@@ -105,8 +103,7 @@ Source read_source(const std::string& path) {
 nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
                                      const std::string& table_path) {
   if (sources.empty()) throw scene::InputError("calibrate: --from-points needs at least one file");
-  std::vector<RestitutionPoint> pts;
-  std::vector<std::string> origin;  // the source of each point, to name a wedge given twice
+  std::vector<std::string> origin;  // the source of each entry, to name a wedge given twice
   CalibrationTable table;
   int skipped = 0;
   double cpu = 0;
@@ -118,19 +115,21 @@ nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
         ++skipped;
         continue;
       }
-      for (std::size_t k = 0; k < pts.size(); ++k)
-        if (std::abs(pts[k].mach - c.mach) < kSameWedge &&
-            std::abs(pts[k].angle_deg - c.angle_deg) < kSameWedge) {
+      for (std::size_t k = 0; k < table.entries.size(); ++k)
+        if (same_wedge({table.entries[k].mach, table.entries[k].angle_deg},
+                       {c.mach, c.angle_deg})) {
           std::ostringstream m;
           m << path << ": the wedge M" << c.mach << " / " << c.angle_deg << " deg is also in "
             << origin[k] << ": each training wedge once";
           throw scene::InputError(m.str());
         }
-      pts.push_back({c.mach, c.angle_deg, c.restitution, c.restitution_ci});
       origin.push_back(path);
       table.entries.push_back(c);
     }
   }
+  std::vector<RestitutionPoint> pts;
+  for (const auto& c : table.entries)
+    pts.push_back({c.mach, c.angle_deg, c.restitution, c.restitution_ci});
   std::string names;
   for (const auto& p : sources) names += (names.empty() ? "" : ", ") + p;
   const auto choice = choose_restitution_model(pts);

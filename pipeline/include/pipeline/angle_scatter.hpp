@@ -18,7 +18,6 @@ struct AngleCheckRun {
   double angle = scene::kNaN, half_width = scene::kNaN, gas = scene::kNaN;
   double flow_throughs = scene::kNaN;
   double mach = scene::kNaN;  // free stream
-  bool beyond_mach = false;   // beyond the table's training Mach range
 };
 
 // sqrt(mean error^2 - mean (half-width / 1.96)^2), floored at zero, over the

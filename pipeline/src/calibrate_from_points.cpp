@@ -92,6 +92,17 @@ Source json_source(const std::string& path) {
   return s;
 }
 
+// The local-correction widths of the table a join extends (its first source).
+CorrectionWidths held_widths(const std::string& path) {
+  const auto ext = std::filesystem::path(path).extension().string();
+  const auto t = ext == ".yaml" || ext == ".yml" ? read_calibration(path) : CalibrationTable{};
+  if (!t.local_correction)
+    throw scene::InputError(path +
+                            ": key 'local_correction': --keep-widths needs the first --from-points "
+                            "file to be a table with a local correction");
+  return {t.local_correction->bandwidth_log_mach, t.local_correction->bandwidth_angle_deg};
+}
+
 Source read_source(const std::string& path) {
   if (!std::filesystem::is_regular_file(path))
     throw scene::InputError(path + ": --from-points file not found");
@@ -101,8 +112,9 @@ Source read_source(const std::string& path) {
 }  // namespace
 
 nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
-                                     const std::string& table_path) {
+                                     const std::string& table_path, bool keep_widths) {
   if (sources.empty()) throw scene::InputError("calibrate: --from-points needs at least one file");
+  const auto held = keep_widths ? std::optional(held_widths(sources.front())) : std::nullopt;
   std::vector<std::string> origin;  // the source of each entry, to name a wedge given twice
   CalibrationTable table;
   int skipped = 0;
@@ -138,7 +150,7 @@ nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
-  const auto local = keep_local_correction(table, pts);
+  const auto local = keep_local_correction(table, pts, held);
   // What the crossings cost to measure, when every source records it.
   table.cpu_seconds = cpu;
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;

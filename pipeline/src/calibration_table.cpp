@@ -309,9 +309,10 @@ void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_an
 }
 
 std::optional<LocalCorrection> keep_local_correction(CalibrationTable& t,
-                                                     std::span<const RestitutionPoint> points) {
+                                                     std::span<const RestitutionPoint> points,
+                                                     const std::optional<CorrectionWidths>& held) {
   const RestitutionFit* fit = t.model ? t.fit(*t.model) : nullptr;
-  auto kept = fit ? choose_local_correction(points, *fit) : std::nullopt;
+  auto kept = fit ? choose_local_correction(points, *fit, held) : std::nullopt;
   if (kept)
     attach_local_correction(t, kept->bandwidth_log_mach, kept->bandwidth_angle_deg, kept->loo_rms);
   return kept;

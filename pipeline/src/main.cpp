@@ -22,6 +22,23 @@
 #include "scene/scene.hpp"
 #include "scene/staging.hpp"
 
+namespace {
+// A table the user named (--calibration, or the scene's
+// pipeline.calibration) must exist: silently running uncalibrated would
+// change every result without a word. Only the built-in table may be absent.
+void require_named_table(const std::string& scene_path, const scene::Scene& s,
+                         const std::string& calibration) {
+  if (!calibration.empty() && !std::filesystem::is_regular_file(calibration))
+    throw scene::InputError(calibration +
+                            ": --calibration file not found (a restitution table from "
+                            "`pipeline calibrate`)");
+  if (calibration.empty() && !s.pipeline.calibration.empty() &&
+      !std::filesystem::is_regular_file(s.pipeline.calibration))
+    throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " +
+                            s.pipeline.calibration + " not found");
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   scene::install_interrupt_handler();
   return scene::run_guarded("pipeline", [&]() -> int {
@@ -107,6 +124,13 @@ int main(int argc, char** argv) {
                       "fit from measured crossings instead of running: pipeline parametric's "
                       "parametric_calibration.json, a calibrate run's calibration.json, or a table "
                       "(.yaml), several joined; --out is then not needed");
+    bool keep_widths = false;
+    calib
+        ->add_flag("--keep-widths", keep_widths,
+                   "with --from-points: keep the local correction's widths of the first file, the "
+                   "table being extended, rather than choosing them again by leave-one-out "
+                   "(crossings added beyond its range then leave e inside it as it was)")
+        ->needs("--from-points");
     std::vector<std::string> bow_runs;
     calib->add_option("--bow-shock-runs", bow_runs,
                       "finished `pipeline run` directories of blunt training bodies (no case study): "
@@ -177,15 +201,7 @@ int main(int argc, char** argv) {
       if (!s.body) throw scene::InputError(scene_path + ": the pipeline needs a body scene (this one has a box)");
       scene::require_supersonic(s, "the pipeline");
       scene::refuse_out_overlap(out_dir, scene_path, "scene file");
-      // A table the user named must exist: silently running uncalibrated
-      // would change every result without a word.
-      if (!calibration.empty() && !std::filesystem::is_regular_file(calibration))
-        throw scene::InputError(calibration + ": --calibration file not found (a restitution table from "
-                                              "`pipeline calibrate`)");
-      if (calibration.empty() && !s.pipeline.calibration.empty() &&
-          !std::filesystem::is_regular_file(s.pipeline.calibration))
-        throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " + s.pipeline.calibration +
-                                " not found");
+      require_named_table(scene_path, s, calibration);
       (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
       const pipeline::BandScatter scatter = pipeline::band_scatter(s, predictor, calibration);
       if (const auto sized = pipeline::fit_default_sizes_to_budget(s, predictor, scatter))
@@ -212,7 +228,9 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (predict->parsed()) {
-      const auto j = pipeline::run_predict(scene::load_scene(scene_path), po);
+      const scene::Scene s = scene::load_scene(scene_path);
+      require_named_table(scene_path, s, po.calibration_path);
+      const auto j = pipeline::run_predict(s, po);
       std::cout << j.dump(2) << "\n";
       return 0;
     }
@@ -254,7 +272,9 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (!from_points.empty()) {
-        std::cout << pipeline::calibrate_from_points(from_points, co.table_path).dump(2) << "\n";
+        std::cout
+            << pipeline::calibrate_from_points(from_points, co.table_path, keep_widths).dump(2)
+            << "\n";
         return 0;
       }
       if (co.out_dir.empty()) throw scene::InputError("calibrate: --out is required (unless --from-points)");

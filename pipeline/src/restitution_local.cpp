@@ -85,8 +85,9 @@ std::optional<double> leave_one_out_corrected(std::span<const RestitutionPoint> 
   return corrected_left_out(rest, points[i], *fit, bandwidth_log_mach, bandwidth_angle_deg);
 }
 
-std::optional<LocalCorrection> choose_local_correction(std::span<const RestitutionPoint> points,
-                                                       const RestitutionFit& fit) {
+std::optional<LocalCorrection> choose_local_correction(
+    std::span<const RestitutionPoint> points, const RestitutionFit& fit,
+    const std::optional<CorrectionWidths>& held) {
   if (!uses_angle(fit.model) || !std::isfinite(fit.loo_rms) || points.size() < 2)
     return std::nullopt;
   // The model refitted without each point, once: every width's left-out
@@ -99,22 +100,27 @@ std::optional<LocalCorrection> choose_local_correction(std::span<const Restituti
     if (!f) return std::nullopt;
     left_out.push_back(*f);
   }
+  std::vector<CorrectionWidths> grid;
+  if (held)
+    grid.push_back(*held);
+  else
+    for (const double hm : kBandwidthsLogMach)
+      for (const double ht : kBandwidthsAngleDeg) grid.push_back({hm, ht});
   std::optional<LocalCorrection> best;
-  for (const double hm : kBandwidthsLogMach)
-    for (const double ht : kBandwidthsAngleDeg) {
-      double swr = 0, sw = 0;
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const double r =
-            points[i].restitution - corrected_left_out(rests[i], points[i], left_out[i], hm, ht);
-        swr += fit_weight(points[i]) * r * r;
-        sw += fit_weight(points[i]);
-      }
-      const double loo = std::sqrt(swr / sw);
-      if (!best || loo < best->loo_rms) {
-        best = local_correction(points, fit, hm, ht);
-        best->loo_rms = loo;
-      }
+  for (const auto& [hm, ht] : grid) {
+    double swr = 0, sw = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double r =
+          points[i].restitution - corrected_left_out(rests[i], points[i], left_out[i], hm, ht);
+      swr += fit_weight(points[i]) * r * r;
+      sw += fit_weight(points[i]);
     }
+    const double loo = std::sqrt(swr / sw);
+    if (!best || loo < best->loo_rms) {
+      best = local_correction(points, fit, hm, ht);
+      best->loo_rms = loo;
+    }
+  }
   if (best && best->loo_rms < (1.0 - kRequiredGain) * fit.loo_rms) return best;
   return std::nullopt;
 }

@@ -443,4 +443,15 @@ TEST(Calibration, FromPointsJoinsATableWithNewTrainingWedges) {
     EXPECT_NE(std::string(e.what()).find("also in " + first), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "twice.yaml"));
+
+  // Keeping the widths needs a first source that has a correction to keep.
+  try {
+    pipeline::calibrate_from_points({(dir / "high.json").string(), first},
+                                    (dir / "kept.yaml").string(), true);
+    ADD_FAILURE() << "--keep-widths without a table first was accepted";
+  } catch (const scene::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("high.json: key 'local_correction'"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "kept.yaml"));
 }

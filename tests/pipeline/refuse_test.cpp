@@ -38,6 +38,13 @@ TEST(Refuse, MissingCalibrationTableIsAnInputError) {
   expect_refusal(pipeline("run " + k + " --out " + dir + "/out"),
                  k + ": key 'pipeline.calibration'");
   EXPECT_FALSE(fs::exists(dir + "/out"));
+  // `pipeline predict` the same: a named table that is absent never means e = 1.
+  expect_refusal(pipeline("predict " + s + " --predictor granular --out " + dir +
+                          "/pred --calibration " + dir + "/absent.yaml"),
+                 dir + "/absent.yaml: --calibration file not found");
+  expect_refusal(pipeline("predict " + k + " --predictor granular --out " + dir + "/pred"),
+                 k + ": key 'pipeline.calibration'");
+  EXPECT_FALSE(fs::exists(dir + "/pred"));
 }
 
 TEST(Refuse, SubsonicSceneIsRefused) {

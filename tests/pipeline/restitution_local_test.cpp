@@ -145,3 +145,21 @@ TEST(LocalCorrection, ATableReadBackEvaluatesAsWritten) {
         << e.what();
   }
 }
+
+// A table extended by crossings far outside its range keeps its own widths
+// when asked: the held pair is the only one tried, and its left-out error is
+// never below the best of the grid's.
+TEST(LocalCorrection, HeldWidthsAreTheOnesUsed) {
+  const auto pts = grid([](double m, double a) { return smooth(m, a) + bump(m, a); }, 1e-4);
+  const auto c = pipeline::choose_restitution_model(pts);
+  ASSERT_TRUE(c.has_value());
+  const auto free = pipeline::choose_local_correction(pts, c->fit());
+  ASSERT_TRUE(free.has_value());
+  const pipeline::CorrectionWidths held{free->bandwidth_log_mach == 0.2 ? 0.1 : 0.2,
+                                        free->bandwidth_angle_deg};
+  const auto kept = pipeline::choose_local_correction(pts, c->fit(), held);
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_DOUBLE_EQ(kept->bandwidth_log_mach, held.log_mach);
+  EXPECT_DOUBLE_EQ(kept->bandwidth_angle_deg, held.angle_deg);
+  EXPECT_GE(kept->loo_rms, free->loo_rms);
+}

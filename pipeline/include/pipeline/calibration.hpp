@@ -221,10 +221,11 @@ void attach_local_correction(CalibrationTable& t, double h_log_mach, double h_an
                              double loo_rms);
 
 // Chooses the table's chosen model's local correction on `points` (the
-// crossings it was fitted to) and, where one is kept, attaches it; returns
-// what was kept (nullopt: none).
-std::optional<LocalCorrection> keep_local_correction(CalibrationTable& t,
-                                                     std::span<const RestitutionPoint> points);
+// crossings it was fitted to), at `held` widths where given, and, where one
+// is kept, attaches it; returns what was kept (nullopt: none).
+std::optional<LocalCorrection> keep_local_correction(
+    CalibrationTable& t, std::span<const RestitutionPoint> points,
+    const std::optional<CorrectionWidths>& held = std::nullopt);
 
 CalibrationTable read_calibration(
     const std::string& path);  // InputError (file and key) if malformed

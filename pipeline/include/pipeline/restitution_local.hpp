@@ -38,11 +38,18 @@ std::optional<double> leave_one_out_corrected(std::span<const RestitutionPoint> 
                                               RestitutionModel model, double bandwidth_log_mach,
                                               double bandwidth_angle_deg, std::size_t i);
 
-// The bandwidths (from a fixed grid) whose corrected model has the smallest
-// leave-one-out error, kept only when that error is clearly below the
-// model's own (`fit.loo_rms`); nullopt otherwise, or for a model that
-// ignores the angle.
-std::optional<LocalCorrection> choose_local_correction(std::span<const RestitutionPoint> points,
-                                                       const RestitutionFit& fit);
+// A correction's kernel widths.
+struct CorrectionWidths {
+  double log_mach = 0;   // in ln M
+  double angle_deg = 0;  // in theta (deg)
+};
+
+// The bandwidths (from a fixed grid, or `held` alone) whose corrected model
+// has the smallest leave-one-out error, kept only when that error is clearly
+// below the model's own (`fit.loo_rms`); nullopt otherwise, or for a model
+// that ignores the angle.
+std::optional<LocalCorrection> choose_local_correction(
+    std::span<const RestitutionPoint> points, const RestitutionFit& fit,
+    const std::optional<CorrectionWidths>& held = std::nullopt);
 
 }  // namespace pipeline

@@ -92,15 +92,22 @@ Source json_source(const std::string& path) {
   return s;
 }
 
-// The local-correction widths of the table a join extends (its first source).
-CorrectionWidths held_widths(const std::string& path) {
+// What a join keeps of the table it extends (its first source): the local
+// correction's widths and the angle scatter measured on unseen wedges.
+struct Extended {
+  CorrectionWidths widths;
+  std::optional<AngleScatter> angle_scatter;
+};
+
+Extended extended_table(const std::string& path) {
   const auto ext = std::filesystem::path(path).extension().string();
   const auto t = ext == ".yaml" || ext == ".yml" ? read_calibration(path) : CalibrationTable{};
   if (!t.local_correction)
     throw scene::InputError(path +
-                            ": key 'local_correction': --keep-widths needs the first --from-points "
+                            ": key 'local_correction': --extend needs the first --from-points "
                             "file to be a table with a local correction");
-  return {t.local_correction->bandwidth_log_mach, t.local_correction->bandwidth_angle_deg};
+  return {{t.local_correction->bandwidth_log_mach, t.local_correction->bandwidth_angle_deg},
+          t.angle_scatter};
 }
 
 Source read_source(const std::string& path) {
@@ -112,9 +119,9 @@ Source read_source(const std::string& path) {
 }  // namespace
 
 nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
-                                     const std::string& table_path, bool keep_widths) {
+                                     const std::string& table_path, bool extend) {
   if (sources.empty()) throw scene::InputError("calibrate: --from-points needs at least one file");
-  const auto held = keep_widths ? std::optional(held_widths(sources.front())) : std::nullopt;
+  const auto kept = extend ? std::optional(extended_table(sources.front())) : std::nullopt;
   std::vector<std::string> origin;  // the source of each entry, to name a wedge given twice
   CalibrationTable table;
   int skipped = 0;
@@ -150,7 +157,9 @@ nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
                           " usable crossing(s): too few, or all at one Mach number, to fit e(M)");
   table.model = choice->fit().model;
   table.fits = choice->candidates;
-  const auto local = keep_local_correction(table, pts, held);
+  const auto local =
+      keep_local_correction(table, pts, kept ? std::optional(kept->widths) : std::nullopt);
+  if (kept) table.angle_scatter = kept->angle_scatter;
   // What the crossings cost to measure, when every source records it.
   table.cpu_seconds = cpu;
   const std::string out = table_path.empty() ? builtin_calibration_path() : table_path;
@@ -165,6 +174,7 @@ nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
                       {"table", out},
                       {"source", sources},
                       {"bow_shock_kept", table.bow_shock.has_value()},
+                      {"angle_scatter_kept", table.angle_scatter.has_value()},
                       {"local_correction", local_correction_json(local)}};
   return r;
 }

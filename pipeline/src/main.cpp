@@ -22,23 +22,6 @@
 #include "scene/scene.hpp"
 #include "scene/staging.hpp"
 
-namespace {
-// A table the user named (--calibration, or the scene's
-// pipeline.calibration) must exist: silently running uncalibrated would
-// change every result without a word. Only the built-in table may be absent.
-void require_named_table(const std::string& scene_path, const scene::Scene& s,
-                         const std::string& calibration) {
-  if (!calibration.empty() && !std::filesystem::is_regular_file(calibration))
-    throw scene::InputError(calibration +
-                            ": --calibration file not found (a restitution table from "
-                            "`pipeline calibrate`)");
-  if (calibration.empty() && !s.pipeline.calibration.empty() &&
-      !std::filesystem::is_regular_file(s.pipeline.calibration))
-    throw scene::InputError(scene_path + ": key 'pipeline.calibration': file " +
-                            s.pipeline.calibration + " not found");
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   scene::install_interrupt_handler();
   return scene::run_guarded("pipeline", [&]() -> int {
@@ -124,12 +107,12 @@ int main(int argc, char** argv) {
                       "fit from measured crossings instead of running: pipeline parametric's "
                       "parametric_calibration.json, a calibrate run's calibration.json, or a table "
                       "(.yaml), several joined; --out is then not needed");
-    bool keep_widths = false;
+    bool extend = false;
     calib
-        ->add_flag("--keep-widths", keep_widths,
-                   "with --from-points: keep the local correction's widths of the first file, the "
-                   "table being extended, rather than choosing them again by leave-one-out "
-                   "(crossings added beyond its range then leave e inside it as it was)")
+        ->add_flag("--extend", extend,
+                   "with --from-points: the first file is a table being extended: keep its local "
+                   "correction's widths (not chosen again by leave-one-out, so crossings added "
+                   "beyond its range leave e inside it as it was) and its measured angle_scatter")
         ->needs("--from-points");
     std::vector<std::string> bow_runs;
     calib->add_option("--bow-shock-runs", bow_runs,
@@ -201,7 +184,7 @@ int main(int argc, char** argv) {
       if (!s.body) throw scene::InputError(scene_path + ": the pipeline needs a body scene (this one has a box)");
       scene::require_supersonic(s, "the pipeline");
       scene::refuse_out_overlap(out_dir, scene_path, "scene file");
-      require_named_table(scene_path, s, calibration);
+      pipeline::require_named_calibration(s, calibration);
       (void)pipeline::make_predictor(predictor);  // an unknown name is bad input, before any estimate
       const pipeline::BandScatter scatter = pipeline::band_scatter(s, predictor, calibration);
       if (const auto sized = pipeline::fit_default_sizes_to_budget(s, predictor, scatter))
@@ -229,7 +212,7 @@ int main(int argc, char** argv) {
     }
     if (predict->parsed()) {
       const scene::Scene s = scene::load_scene(scene_path);
-      require_named_table(scene_path, s, po.calibration_path);
+      pipeline::require_named_calibration(s, po.calibration_path);
       const auto j = pipeline::run_predict(s, po);
       std::cout << j.dump(2) << "\n";
       return 0;
@@ -272,9 +255,8 @@ int main(int argc, char** argv) {
         return 0;
       }
       if (!from_points.empty()) {
-        std::cout
-            << pipeline::calibrate_from_points(from_points, co.table_path, keep_widths).dump(2)
-            << "\n";
+        std::cout << pipeline::calibrate_from_points(from_points, co.table_path, extend).dump(2)
+                  << "\n";
         return 0;
       }
       if (co.out_dir.empty()) throw scene::InputError("calibrate: --out is required (unless --from-points)");

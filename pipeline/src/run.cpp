@@ -188,8 +188,21 @@ std::optional<double> attached_wedge_angle_deg(const scene::Scene& s) {
 }
 }  // namespace
 
+void require_named_calibration(const scene::Scene& s, const std::string& table_path) {
+  if (!table_path.empty() && !fs::is_regular_file(table_path))
+    throw scene::InputError(table_path +
+                            ": --calibration file not found (a restitution table from "
+                            "`pipeline calibrate`)");
+  if (table_path.empty() && !s.pipeline.calibration.empty() &&
+      !fs::is_regular_file(s.pipeline.calibration))
+    throw scene::InputError((s.source_file.empty() ? "scene " + s.name : s.source_file) +
+                            ": key 'pipeline.calibration': file " + s.pipeline.calibration +
+                            " not found");
+}
+
 AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path) {
   if (!s.body || s.granular.restitution_given) return {};
+  require_named_calibration(s, table_path);
   if (s.granular.elastic_impact_speed > 0.0)
     throw scene::InputError(
         (s.source_file.empty() ? "scene " + s.name : s.source_file) +

@@ -444,11 +444,11 @@ TEST(Calibration, FromPointsJoinsATableWithNewTrainingWedges) {
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "twice.yaml"));
 
-  // Keeping the widths needs a first source that has a correction to keep.
+  // Extending needs a first source that is a table with a correction to keep.
   try {
     pipeline::calibrate_from_points({(dir / "high.json").string(), first},
                                     (dir / "kept.yaml").string(), true);
-    ADD_FAILURE() << "--keep-widths without a table first was accepted";
+    ADD_FAILURE() << "--extend without a table first was accepted";
   } catch (const scene::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("high.json: key 'local_correction'"), std::string::npos)
         << e.what();

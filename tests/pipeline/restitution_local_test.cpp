@@ -8,12 +8,15 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "pipeline/calibration.hpp"
 #include "pipeline/run.hpp"
+#include "pipeline/studies.hpp"
 #include "scene/errors.hpp"
+#include "scene/io.hpp"
 #include "scene/scene.hpp"
 #include "scratch.hpp"
 
@@ -162,4 +165,47 @@ TEST(LocalCorrection, HeldWidthsAreTheOnesUsed) {
   EXPECT_DOUBLE_EQ(kept->bandwidth_log_mach, held.log_mach);
   EXPECT_DOUBLE_EQ(kept->bandwidth_angle_deg, held.angle_deg);
   EXPECT_GE(kept->loo_rms, free->loo_rms);
+}
+
+// A table extended by crossings far beyond its Mach range (`--from-points
+// TABLE NEW.json --extend`) keeps its correction's widths and its measured
+// angle scatter, and e inside its range stays where its correction had it.
+TEST(LocalCorrection, AnExtendedTableKeepsItsWidthsAndScatter) {
+  const auto law = [](double m, double a) { return smooth(m, a) + bump(m, a); };
+  const auto pts = grid(law, 1e-4);
+  const auto c = pipeline::choose_restitution_model(pts);
+  ASSERT_TRUE(c.has_value());
+  const auto lc = pipeline::choose_local_correction(pts, c->fit());
+  ASSERT_TRUE(lc.has_value());
+  auto t = table_of(pts, *c);
+  pipeline::attach_local_correction(t, lc->bandwidth_log_mach, lc->bandwidth_angle_deg,
+                                    lc->loo_rms);
+  t.angle_scatter = pipeline::AngleScatter{0.18, 0.23, 12.0, 120, 40, 2.6, 5.9};
+  const std::string dir = test_support::fresh_dir("restitution_extend");
+  pipeline::write_calibration(t, dir + "/first.yaml");
+  nlohmann::json far;
+  far["crossings"] = nlohmann::json::array();
+  for (const double a : {8.0, 14.0, 20.0, 26.0})
+    far["crossings"].push_back({{"mach", 10.0},
+                                {"angle_deg", a},
+                                {"restitution", law(10.0, a) - 0.004},
+                                {"restitution_ci", 0.002}});
+  scene::write_file_atomic(dir + "/far.json", far.dump());
+  const auto r = pipeline::calibrate_from_points({dir + "/first.yaml", dir + "/far.json"},
+                                                 dir + "/extended.yaml", true);
+  EXPECT_TRUE(r["angle_scatter_kept"].get<bool>());
+  const auto x = pipeline::read_calibration(dir + "/extended.yaml");
+  ASSERT_TRUE(x.local_correction.has_value());
+  EXPECT_EQ(x.local_correction->bandwidth_log_mach, lc->bandwidth_log_mach);
+  EXPECT_EQ(x.local_correction->bandwidth_angle_deg, lc->bandwidth_angle_deg);
+  ASSERT_TRUE(x.angle_scatter.has_value());
+  EXPECT_DOUBLE_EQ(x.angle_scatter->deg, 0.18);
+  EXPECT_DOUBLE_EQ(pipeline::training_mach_range(x)->high, 10.0);
+  // Inside the old range, well away from Mach 10: e within the tolerance
+  // the extension is judged by (0.0005, about 0.1 deg at the steepest).
+  constexpr double kInsideMove = 5e-4;
+  for (const auto& [m, a] : {std::pair{3.25, 22.0}, {2.8, 12.5}, {4.2, 17.0}})
+    EXPECT_NEAR(*pipeline::interpolate_restitution(x, m, a),
+                *pipeline::interpolate_restitution(t, m, a), kInsideMove)
+        << m << " / " << a;
 }

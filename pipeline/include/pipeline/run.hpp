@@ -43,6 +43,11 @@ struct AppliedCalibration {
   // and the table measured one (its relative_rms is then bow_shock_relative_rms).
   std::optional<BowStationBias> station_bias = std::nullopt;
 };
+// A table the user named (`table_path`, or the scene's pipeline.calibration)
+// must exist: silently running uncalibrated would change every result without
+// a word. Only the built-in table may be absent. InputError naming the file
+// (and the scene's key) otherwise.
+void require_named_calibration(const scene::Scene& s, const std::string& table_path);
 // Applies the calibration table when the scene leaves granular.restitution
 // unset; bodies without a wedge angle take its Mach-only fit.
 AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_path);

@@ -67,12 +67,12 @@ nlohmann::json run_calibration(const CalibrateOptions& o);
 // `crossings` of pipeline parametric's parametric_calibration.json, the
 // `points` of a calibrate run's calibration.json, or a table's entries
 // (.yaml), joined; a wedge given twice is an error, the case studies are left
-// out. Writes the table (default: the built-in one). With `keep_widths` the
-// local correction keeps the widths of the first source, a table being
-// extended: crossings added beyond its range then leave e inside it where
-// its own correction had it, instead of re-smoothing it.
+// out. Writes the table (default: the built-in one). With `extend` the first
+// source is a table being extended: the local correction keeps its widths,
+// so crossings added beyond its range leave e inside it where its own
+// correction had it, and its measured angle scatter is kept.
 nlohmann::json calibrate_from_points(const std::vector<std::string>& sources,
-                                     const std::string& table_path, bool keep_widths = false);
+                                     const std::string& table_path, bool extend = false);
 
 struct StudiesOptions {
   std::string out_dir;

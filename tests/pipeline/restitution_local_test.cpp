@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,25 @@ pipeline::CalibrationTable table_of(const std::vector<RestitutionPoint>& pts,
   t.fits = c.candidates;
   return t;
 }
+// The bump's points, their chosen model and kept correction, and a table
+// holding both: what a calibration with a local correction writes.
+struct Corrected {
+  std::vector<RestitutionPoint> pts;
+  pipeline::ModelChoice choice;
+  pipeline::LocalCorrection lc;
+  pipeline::CalibrationTable table;
+};
+std::optional<Corrected> corrected_table() {
+  const auto pts = grid([](double m, double a) { return smooth(m, a) + bump(m, a); }, 1e-4);
+  const auto c = pipeline::choose_restitution_model(pts);
+  if (!c) return std::nullopt;
+  const auto lc = pipeline::choose_local_correction(pts, c->fit());
+  if (!lc) return std::nullopt;
+  auto t = table_of(pts, *c);
+  pipeline::attach_local_correction(t, lc->bandwidth_log_mach, lc->bandwidth_angle_deg,
+                                    lc->loo_rms);
+  return Corrected{pts, *c, *lc, t};
+}
 }  // namespace
 
 TEST(LocalCorrection, TakesOutALackOfFitTheSmoothModelCannotFollow) {
@@ -97,14 +117,12 @@ TEST(LocalCorrection, IsRefusedWhereTheSmoothModelFits) {
 }
 
 TEST(LocalCorrection, ATableReadBackEvaluatesAsWritten) {
-  const auto pts = grid([](double m, double a) { return smooth(m, a) + bump(m, a); }, 1e-4);
-  const auto c = pipeline::choose_restitution_model(pts);
-  ASSERT_TRUE(c.has_value());
-  const auto lc = pipeline::choose_local_correction(pts, c->fit());
-  ASSERT_TRUE(lc.has_value());
-  auto t = table_of(pts, *c);
-  pipeline::attach_local_correction(t, lc->bandwidth_log_mach, lc->bandwidth_angle_deg,
-                                    lc->loo_rms);
+  const auto x = corrected_table();
+  ASSERT_TRUE(x.has_value());
+  const auto& pts = x->pts;
+  const auto* c = &x->choice;
+  const auto* lc = &x->lc;
+  const auto& t = x->table;
   const std::string dir = test_support::fresh_dir("restitution_local");
   const std::string path = dir + "/table.yaml";
   pipeline::write_calibration(t, path);
@@ -172,14 +190,10 @@ TEST(LocalCorrection, HeldWidthsAreTheOnesUsed) {
 // angle scatter, and e inside its range stays where its correction had it.
 TEST(LocalCorrection, AnExtendedTableKeepsItsWidthsAndScatter) {
   const auto law = [](double m, double a) { return smooth(m, a) + bump(m, a); };
-  const auto pts = grid(law, 1e-4);
-  const auto c = pipeline::choose_restitution_model(pts);
-  ASSERT_TRUE(c.has_value());
-  const auto lc = pipeline::choose_local_correction(pts, c->fit());
-  ASSERT_TRUE(lc.has_value());
-  auto t = table_of(pts, *c);
-  pipeline::attach_local_correction(t, lc->bandwidth_log_mach, lc->bandwidth_angle_deg,
-                                    lc->loo_rms);
+  const auto corrected = corrected_table();
+  ASSERT_TRUE(corrected.has_value());
+  const auto* lc = &corrected->lc;
+  auto t = corrected->table;
   t.angle_scatter = pipeline::AngleScatter{0.18, 0.23, 12.0, 120, 40, 2.6, 5.9};
   const std::string dir = test_support::fresh_dir("restitution_extend");
   pipeline::write_calibration(t, dir + "/first.yaml");

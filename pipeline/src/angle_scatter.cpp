@@ -151,7 +151,9 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
                               runs.front().wedge + " " + format_number(runs.front().flow_throughs) +
                               ": the scatter belongs to one averaging");
   // Inside the ranges, the table's own error; beyond its Mach range, the
-  // extrapolation's, on one side: one measure never mixes them.
+  // extrapolation's, on one side: one measure never mixes them. Runs all
+  // beyond the Mach numbers the inside scatter was measured on, on one side,
+  // measure that side apart too (a table extended there by `--extend`).
   const auto range = training_mach_range(table);
   const auto side = [&](const AngleCheckRun& r) {
     return range->contains(r.mach) ? 0 : r.mach > range->high ? 1 : -1;
@@ -164,9 +166,22 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
           ") lie on different sides of the training Mach range " + format_number(range->low) + "-" +
           format_number(range->high) +
           ": the table's error inside it and the extrapolation's beyond it are measured apart");
+  const auto measured = scatter_mach_range(table);
+  const auto past_measured = [&](const AngleCheckRun& r) {
+    return measured->contains(r.mach) ? 0 : r.mach > measured->high ? 1 : -1;
+  };
+  bool all_past = table.angle_scatter.has_value() && past_measured(runs.front()) != 0;
+  for (const AngleCheckRun& r : runs)
+    all_past = all_past && past_measured(r) == past_measured(runs.front());
   const AngleScatter a = angle_scatter_of(runs);
-  const bool beyond = side(runs.front()) != 0;
+  const bool beyond = side(runs.front()) != 0 || all_past;
   (beyond ? table.angle_scatter_beyond : table.angle_scatter) = a;
+  // A beyond block is measured past the inside block's Mach numbers; a new
+  // inside block that reaches its runs leaves it nothing to stand for.
+  if (!beyond && table.angle_scatter_beyond &&
+      !(table.angle_scatter_beyond->mach_low > a.mach_high ||
+        table.angle_scatter_beyond->mach_high < a.mach_low))
+    table.angle_scatter_beyond.reset();
   write_calibration(table, path);
   return {{"table", path},
           {"block", beyond ? "angle_scatter_beyond_mach" : "angle_scatter"},

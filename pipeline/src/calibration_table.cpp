@@ -436,12 +436,13 @@ CalibrationTable read_calibration(const std::string& path) {
     t.angle_scatter_beyond = read_scatter("angle_scatter_beyond_mach");
     if (t.angle_scatter_beyond) {
       const auto& b = *t.angle_scatter_beyond;
-      const auto range = training_mach_range(t);
+      const auto range = scatter_mach_range(t);
       const bool one_side = range && b.mach_low <= b.mach_high &&
                             (b.mach_low > range->high || b.mach_high < range->low);
       if (!one_side)
         bad(path, root["angle_scatter_beyond_mach"], "angle_scatter_beyond_mach",
-            "expected mach_low <= mach_high, both on one side of the training Mach range");
+            "expected mach_low <= mach_high, both on one side of the Mach range the inside "
+            "angle_scatter was measured on (else the training Mach range)");
     }
     if (const auto tp = root["training_points"]) {
       if (!tp.IsSequence() || tp.size() != t.entries.size())
@@ -563,8 +564,8 @@ void write_calibration(const CalibrationTable& t, const std::string& path) {
             "# the default averaging, from `pipeline calibrate --angle-check-runs`; it widens\n"
             "# attached bands in place of the leave-one-out estimate.\n"
             "# angle_scatter_beyond_mach (if present): the same error on unseen wedges\n"
-            "# beyond the training Mach range (e(M) extrapolated); attached wedges on\n"
-            "# that side take it.\n"
+            "# beyond the Mach numbers angle_scatter was measured on (training wedges\n"
+            "# added there, or e(M) extrapolated); attached wedges on that side take it.\n"
           : "# Written by `pipeline calibrate`: restitution e at which the granular\n"
             "# shock angle equals the ideal-gas theta-beta-Mach angle.\n";
   scene::write_file_atomic(path, header + e.c_str() + "\n");
@@ -590,9 +591,16 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t) {
   return n >= 2 ? std::sqrt(ss / n) : kNaN;
 }
 
+std::optional<MachRange> scatter_mach_range(const CalibrationTable& t) {
+  if (t.angle_scatter && std::isfinite(t.angle_scatter->mach_low) &&
+      std::isfinite(t.angle_scatter->mach_high))
+    return MachRange{t.angle_scatter->mach_low, t.angle_scatter->mach_high};
+  return training_mach_range(t);
+}
+
 bool beyond_scatter_applies(const CalibrationTable& t, double mach) {
   if (!t.angle_scatter_beyond) return false;
-  const auto range = training_mach_range(t);
+  const auto range = scatter_mach_range(t);
   if (!range || range->contains(mach)) return false;
   const bool measured_above = t.angle_scatter_beyond->mach_low > range->high;
   return measured_above == (mach > range->high);

@@ -171,12 +171,13 @@ std::string outside_warning(const std::string& subject, const char* range_name, 
          shortest(r.high) + unit + ", so " + consequence;
 }
 // What the band takes where the table measured its extrapolation's error.
-std::string extrapolation_measured(const AngleScatter& b, double mach) {
+std::string extrapolation_measured(const AngleScatter& b, double mach,
+                                   const std::string& whose = "the extrapolation's own") {
   char deg[32];
   std::snprintf(deg, sizeof deg, "%.3f", b.deg);
-  std::string out = std::string("the band takes the extrapolation's own angle error, ") + deg +
-                    " deg, measured on " + std::to_string(b.wedges) + " unseen wedges at Mach " +
-                    shortest(b.mach_low) + "-" + shortest(b.mach_high);
+  std::string out = "the band takes " + whose + " angle error, " + deg + " deg, measured on " +
+                    std::to_string(b.wedges) + " unseen wedges at Mach " + shortest(b.mach_low) +
+                    "-" + shortest(b.mach_high);
   if (!MachRange{b.mach_low, b.mach_high}.contains(mach))
     out += ", not at this Mach number: " + std::string(kUnmeasuredError);
   return out;
@@ -271,6 +272,10 @@ AppliedCalibration apply_calibration(scene::Scene& s, const std::string& table_p
             (!shape && wedge_deg && beyond_scatter_applies(t, s.freestream.mach)
                  ? extrapolation_measured(*t.angle_scatter_beyond, s.freestream.mach)
                  : std::string(kUnmeasuredError)));
+  else if (!shape && wedge_deg && beyond_scatter_applies(t, s.freestream.mach))
+    // Inside the training range, past the Mach numbers the inside scatter saw.
+    note += "; " +
+            extrapolation_measured(*t.angle_scatter_beyond, s.freestream.mach, "the table's own");
   // A fit in the deflection extrapolates beyond the training wedges too
   // (1/theta grows fast below them).
   const auto angles = training_angle_range(t);

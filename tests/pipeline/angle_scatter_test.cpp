@@ -84,7 +84,9 @@ TEST(AngleScatter, IsWrittenIntoTheTableAndWidensTheBand) {
   const std::string table = (d / "calibration.yaml").string();
   fs::copy_file(kSource + "/pipeline/calibration.yaml", table);
   pipeline::CalibrationTable t = pipeline::read_calibration(table);
+  // The beyond block stands past the inside block's Mach numbers: both go.
   t.angle_scatter.reset();
+  t.angle_scatter_beyond.reset();
   pipeline::write_calibration(t, table);
   const double loo = pipeline::table_angle_scatter_deg(t);
   // Four unseen wedges inside the training ranges, three seeds each.
@@ -174,7 +176,12 @@ TEST(AngleScatter, BeyondTheMachRangeIsMeasuredApartAndTakenThereOnly) {
   EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, 0.5 * (range->low + range->high)), inside,
               kTol);
   EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, range->low - 0.3), inside, kTol);
-  EXPECT_FALSE(pipeline::beyond_scatter_applies(after, range->high));
+  // The inside block serves the Mach numbers its runs covered; past them the
+  // measured block takes over, inside the training range too (a table
+  // extended beyond those runs).
+  const auto seen = pipeline::scatter_mach_range(after);
+  ASSERT_TRUE(seen.has_value());
+  EXPECT_FALSE(pipeline::beyond_scatter_applies(after, seen->high));
   // Above the range, and beyond the runs' own Mach numbers too.
   EXPECT_TRUE(pipeline::beyond_scatter_applies(after, range->high + 0.1));
   EXPECT_NEAR(pipeline::table_angle_scatter_deg(after, range->high + 0.1),
@@ -198,6 +205,12 @@ TEST(AngleScatter, BeyondTheMachRangeIsMeasuredApartAndTakenThereOnly) {
   const auto further = applied(range->high + 3.0);  // beyond the runs' own Mach numbers
   EXPECT_NE(further.note.find("not at this Mach number"), std::string::npos) << further.note;
   EXPECT_NEAR(applied(0.5 * (range->low + range->high)).angle_scatter_deg, inside, kTol);
+  if (seen->high + 0.05 < range->high) {
+    const auto past = applied(seen->high + 0.05);
+    EXPECT_FALSE(past.outside_training_mach);
+    EXPECT_NEAR(past.angle_scatter_deg, after.angle_scatter_beyond->deg, kTol);
+    EXPECT_NE(past.note.find("the table's own angle error"), std::string::npos) << past.note;
+  }
 
   // A block whose runs do not lie beyond the range is refused, naming the key.
   std::string text = scene::read_file(table);

@@ -247,7 +247,7 @@ double out_of_sample_angle_rms_deg(const CalibrationTable& t);
 // measured on unseen wedges at 16.) NaN where neither is.
 double table_angle_scatter_deg(const CalibrationTable& t);
 // The scatter a wedge at this Mach number takes: `angle_scatter_beyond` where
-// the Mach number lies beyond the training range on the side that block was
+// the Mach number lies beyond scatter_mach_range on the side that block was
 // measured (never narrower than the inside scatter), else the one above.
 double table_angle_scatter_deg(const CalibrationTable& t, double mach);
 // Whether `angle_scatter_beyond` is what a wedge at this Mach number takes.
@@ -284,6 +284,11 @@ struct MachRange {
   bool contains(double mach) const { return mach >= low && mach <= high; }
 };
 std::optional<MachRange> training_mach_range(const CalibrationTable& t);
+// The Mach range the inside `angle_scatter` describes: the Mach numbers of
+// the runs it was measured on where it records them, else the training range.
+// A table extended beyond those runs (`--extend`) has training wedges there
+// whose error the inside scatter never saw.
+std::optional<MachRange> scatter_mach_range(const CalibrationTable& t);
 // The training wedges' deflections (deg), in the same type; nullopt without entries.
 std::optional<MachRange> training_angle_range(const CalibrationTable& t);
 // The same for a shape's fit: its training bodies' Mach numbers.

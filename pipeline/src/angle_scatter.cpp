@@ -154,10 +154,12 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
   // extrapolation's, on one side: one measure never mixes them. Runs all
   // beyond the Mach numbers the inside scatter was measured on, on one side,
   // measure that side apart too (a table extended there by `--extend`).
-  const auto range = training_mach_range(table);
-  const auto side = [&](const AngleCheckRun& r) {
-    return range->contains(r.mach) ? 0 : r.mach > range->high ? 1 : -1;
+  // -1 below `r`, 0 inside, 1 above.
+  const auto side_of = [](const MachRange& r, double mach) {
+    return r.contains(mach) ? 0 : mach > r.high ? 1 : -1;
   };
+  const auto range = training_mach_range(table);
+  const auto side = [&](const AngleCheckRun& r) { return side_of(*range, r.mach); };
   for (const AngleCheckRun& r : runs)
     if (side(r) != side(runs.front()))
       throw scene::InputError(
@@ -167,9 +169,7 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
           format_number(range->high) +
           ": the table's error inside it and the extrapolation's beyond it are measured apart");
   const auto measured = scatter_mach_range(table);
-  const auto past_measured = [&](const AngleCheckRun& r) {
-    return measured->contains(r.mach) ? 0 : r.mach > measured->high ? 1 : -1;
-  };
+  const auto past_measured = [&](const AngleCheckRun& r) { return side_of(*measured, r.mach); };
   bool all_past = table.angle_scatter.has_value() && past_measured(runs.front()) != 0;
   for (const AngleCheckRun& r : runs)
     all_past = all_past && past_measured(r) == past_measured(runs.front());

@@ -99,9 +99,13 @@ struct Extended {
   std::optional<AngleScatter> angle_scatter;
 };
 
-Extended extended_table(const std::string& path) {
+bool is_table_file(const std::string& path) {
   const auto ext = std::filesystem::path(path).extension().string();
-  const auto t = ext == ".yaml" || ext == ".yml" ? read_calibration(path) : CalibrationTable{};
+  return ext == ".yaml" || ext == ".yml";
+}
+
+Extended extended_table(const std::string& path) {
+  const auto t = is_table_file(path) ? read_calibration(path) : CalibrationTable{};
   if (!t.local_correction)
     throw scene::InputError(path +
                             ": key 'local_correction': --extend needs the first --from-points "
@@ -113,8 +117,7 @@ Extended extended_table(const std::string& path) {
 Source read_source(const std::string& path) {
   if (!std::filesystem::is_regular_file(path))
     throw scene::InputError(path + ": --from-points file not found");
-  const auto ext = std::filesystem::path(path).extension().string();
-  return ext == ".yaml" || ext == ".yml" ? table_source(path) : json_source(path);
+  return is_table_file(path) ? table_source(path) : json_source(path);
 }
 }  // namespace
 

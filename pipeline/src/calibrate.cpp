@@ -103,11 +103,16 @@ std::vector<Training> training_set(const CalibrateOptions& o,
   std::vector<Training> out;
   if (o.scenes.empty()) {
     for (const auto& p : training_wedges(o.machs, o.angles_deg, kTargetGamma, cases))
-      out.push_back({training_scene(p), "calibrate training wedge"});
+      out.push_back({training_scene(p, o.averaging.value_or(default_training_averaging())),
+                     "calibrate training wedge"});
     if (out.empty())
       throw scene::InputError(
           "calibrate: --mach x --angle gives no attached wedge outside the case studies");
   } else {
+    if (o.averaging)
+      throw scene::InputError(
+          "calibrate: --averaging sets generated training wedges; with --scene set "
+          "granular.averaging in each scene");
     for (const auto& path : o.scenes) {
       scene::Scene s = scene::load_scene(path);
       if (!s.body || !scene::calibration_angle_deg(*s.body))
@@ -315,6 +320,9 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       {"restitutions", o.restitutions},
       {"refinements", o.refinements},
       {"seeds", o.seeds},
+      {"training_averaging",
+       o.scenes.empty() ? nlohmann::json(o.averaging.value_or(default_training_averaging()))
+                        : nlohmann::json(nullptr)},
       {"crossing_window", kCrossingCurveWindow},
       {"training", o.scenes.empty()
                        ? nlohmann::json{{"machs", o.machs}, {"angles_deg", o.angles_deg}}

@@ -14,11 +14,13 @@ using scene::kDeg;
 // Two wedges are the same case when Mach and angle agree to this (the
 // values are written by hand to at most a few decimals).
 constexpr double kSameWedgeTolerance = 1e-9;
-// Flow-through times a generated training wedge averages: the shipped table
-// was fitted at 4, and the mean angle does not move with the averaging (16
-// against 4: -0.02 deg, 95% -0.13 to +0.09; docs/shockfit.md "Sixteen
-// flow-through times"), so the sweeps keep 4 (a third of the attached
-// shocks' default 16's CPU) and reproduce that table.
+// Flow-through times a generated training wedge averages by default: the
+// table was fitted at 4 up to Mach 8, where the mean angle hardly moves with
+// the averaging (16 against 4: -0.02 deg, 95% -0.13 to +0.09; docs/shockfit.md
+// "Sixteen flow-through times"), so the sweeps keep 4 (a third of the CPU)
+// and reproduce those crossings. At Mach 9-10 a fit of 12 reads 0.135 deg
+// above one of 4 (docs/calibration.md "The averaging the crossings are read
+// at"): `pipeline calibrate --averaging` sweeps there at predict's 12.
 constexpr double kTrainingAveraging = 4.0;
 }  // namespace
 
@@ -52,13 +54,17 @@ std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths
   return out;
 }
 
-scene::Scene training_scene(const WedgePoint& p) {
+double default_training_averaging() {
+  return kTrainingAveraging;
+}
+
+scene::Scene training_scene(const WedgePoint& p, double averaging_flow_throughs) {
   std::ostringstream name, yaml;
   name << "train_M" << p.mach << "_" << p.angle_deg;
   yaml << "name: " << name.str() << "\n"
        << "body: {kind: wedge, angle_deg: " << p.angle_deg << ", length: 1.0}\n"
        << "freestream: {mach: " << p.mach << ", gamma: 1.4}\n"
-       << "granular: {averaging: " << kTrainingAveraging << "}\n";
+       << "granular: {averaging: " << averaging_flow_throughs << "}\n";
   return scene::parse_scene(yaml.str(), "calibrate training wedge " + name.str());
 }
 

@@ -75,3 +75,20 @@ TEST(Refuse, FittingShapesWithoutTrainingRunsOrCacheIsAnInputError) {
   expect_refusal(pipeline("calibrate --fit-shapes --bow-shock-runs " + dir + "/a " + dir + "/b"),
                  dir + "/a: --bow-shock-runs: no such directory");
 }
+
+// --averaging sets the generated training wedges; scenes given with --scene
+// carry their own, and a value beyond the check is refused before any run.
+TEST(Refuse, TrainingAveragingWithScenesOrOutOfRangeIsRefused) {
+  const std::string s = fresh_scene(
+      "train_avg", "name: t\nbody: {kind: wedge, angle_deg: 12}\nfreestream: {mach: 9}\n");
+  const std::string dir = fs::path(s).parent_path().string();
+  expect_refusal(pipeline("calibrate --scene " + s + " --averaging 12 --e 0.94 0.96 --out " + dir +
+                          "/cal --table " + dir + "/t.yaml --no-verify"),
+                 "--averaging sets generated training wedges");
+  EXPECT_FALSE(fs::exists(dir + "/t.yaml"));
+  const CliRun r = pipeline("calibrate --averaging 1000 --mach 9 --angle 12 --out " + dir +
+                            "/cal2 --table " + dir + "/t2.yaml --no-verify");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--averaging"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/t2.yaml"));
+}

@@ -179,6 +179,11 @@ TEST(CalibrationTraining, DetachedWedgesAreLeftOut) {
   // shocks' default 16)
   EXPECT_TRUE(s.granular.averaging_given);
   EXPECT_DOUBLE_EQ(s.granular.averaging, 4.0);
+  // `pipeline calibrate --averaging` sweeps at another averaging (the Mach
+  // 9-10 crossings at predict's 12).
+  const auto s12 = pipeline::training_scene(t[0], 12.0);
+  EXPECT_DOUBLE_EQ(s12.granular.averaging, 12.0);
+  EXPECT_EQ(s12.name, s.name);
 }
 
 TEST(RestitutionFit, ACurvatureInMachIsRecoveredAndChosenOnASevenMachGrid) {

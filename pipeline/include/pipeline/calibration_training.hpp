@@ -22,11 +22,16 @@ std::vector<WedgePoint> training_wedges(const std::vector<double>& machs,
 // (Mach, angle) of the wedge scenes among `scene_paths` (other bodies skipped).
 std::vector<WedgePoint> wedge_points(const std::vector<std::string>& scene_paths);
 
+// Flow-through times a generated training wedge averages by default
+// (calibration_training.cpp says why 4).
+double default_training_averaging();
+
 // A wedge scene at (mach, angle_deg) with every other key at its default,
 // as the case-study scenes have them (wedge length 1, gamma 1.4, default
-// granular settings), except the averaging: 4 flow-through times, the
-// shipped table's (calibration_training.cpp); named train_M<mach>_<angle>.
-scene::Scene training_scene(const WedgePoint& p);
+// granular settings), except the averaging: `averaging_flow_throughs`;
+// named train_M<mach>_<angle>.
+scene::Scene training_scene(const WedgePoint& p,
+                            double averaging_flow_throughs = default_training_averaging());
 
 bool same_wedge(const WedgePoint& a, const WedgePoint& b);
 

@@ -1,9 +1,9 @@
 #pragma once
 // Parameter sweeps, the e calibration, and the case studies.
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/scene.hpp"
 
@@ -55,6 +55,10 @@ struct CalibrateOptions {
   // seeds halve the crossings' intervals but left the out-of-sample angle
   // error where one seed has it (docs/calibration.md, "Three seeds per e").
   int seeds = 1;
+  // Flow-through times each generated training wedge averages; unset: the
+  // default's 4 (calibration_training.cpp). Scenes given with `scenes` carry
+  // their own.
+  std::optional<double> averaging;
   std::string table_path;           // default: builtin_calibration_path()
   std::string markdown_path;        // default: <out_dir>/calibration.md
   int jobs = 1, np = 1;

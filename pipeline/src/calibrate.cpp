@@ -213,6 +213,7 @@ nlohmann::json run_calibration(const CalibrateOptions& o) {
       const double e = cross->e, e_ci = cross->e_ci;
       row["restitution"] = e;
       row["restitution_ci"] = e_ci;
+      row["on_step"] = crossing_on_step(pts, gas);
       point_row.push_back(rows.size());
       points.push_back({mach, theta, e, e_ci});
       table.entries.push_back(crossing_entry(mach, theta, e, e_ci, gas));

@@ -128,6 +128,19 @@ std::string calibration_markdown(const nlohmann::json& c) {
        << fixed(num(p, "gas_angle_deg"), kAngleDecimals) << " | "
        << fixed(num(p, "loo_angle_error_deg"), kAngleDecimals) << " |\n";
   }
+  std::ostringstream steps;
+  int n_steps = 0;
+  for (const auto& p : c.at("points"))
+    if (p.value("on_step", false))
+      steps << (n_steps++ ? ", " : "") << general(num(p, "mach"), 3) << " / "
+            << general(num(p, "angle_deg"), 3);
+  if (n_steps > 0)
+    md << "\n**" << n_steps
+       << " crossing(s) on a step of angle(e)** (the bracket rises several times faster than "
+          "the segment above it): "
+       << steps.str()
+       << ". There the gas angle is met only at the step's foot, and an e a little lower "
+          "reads degrees lower (docs/calibration.md).\n";
   const auto& l = s.at("leave_one_out");
   md << "\nOut-of-sample angle error over " << l.value("n", 0) << " wedges: RMS "
      << fixed(num(l, "rms_deg"), kAngleDecimals) << " deg, max |error| "

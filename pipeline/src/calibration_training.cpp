@@ -19,8 +19,9 @@ constexpr double kSameWedgeTolerance = 1e-9;
 // the averaging (16 against 4: -0.02 deg, 95% -0.13 to +0.09; docs/shockfit.md
 // "Sixteen flow-through times"), so the sweeps keep 4 (a third of the CPU)
 // and reproduce those crossings. At Mach 9-10 a fit of 12 reads 0.135 deg
-// above one of 4 (docs/calibration.md "The averaging the crossings are read
-// at"): `pipeline calibrate --averaging` sweeps there at predict's 12.
+// above one of 4, yet crossings swept there at 12 lost out of sample (they
+// sit on a step of angle(e); docs/calibration.md "The averaging the
+// crossings are read at"): `--averaging` is there to sweep at another.
 constexpr double kTrainingAveraging = 4.0;
 }  // namespace
 

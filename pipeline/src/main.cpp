@@ -152,9 +152,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, pipeline::kMaxSweepSeeds));
     calib
         ->add_option("--averaging", training_averaging,
-                     "flow-through times each generated training wedge averages (default 4; "
-                     "the Mach 9-10 crossings of the shipped table were swept at 12, predict's "
-                     "default, docs/calibration.md)")
+                     "flow-through times each generated training wedge averages (default 4, "
+                     "the shipped table's; predict reads 12, docs/calibration.md)")
         ->check(CLI::Range(0.5, 64.0));
     calib->add_option("--out", co.out_dir, "output directory");
     calib->add_option("--table", co.table_path, "table to write (default: pipeline/calibration.yaml)");

@@ -12,6 +12,12 @@ namespace pipeline {
 namespace {
 // A fit with a wider 95% interval than this is noise, not a shock angle.
 constexpr double kMaxUsableCiDeg = 5.0;
+// A bracket this many times steeper than the segment above it is a step
+// (with its rise beyond the runs' intervals). At 3: none of the 88
+// crossings at Mach 2-8 swept at 4 flow-through times (1 of 18 at Mach
+// 9-10), 3 of 18 at Mach 7-8 and 7 of 18 at Mach 9-10 swept at 12; ratios 2
+// and 5 change that by one crossing at most (docs/calibration.md).
+constexpr double kStepSlopeRatio = 3.0;
 bool already_run(const std::vector<SweepPoint>& pts, double e) {
   return std::any_of(pts.begin(), pts.end(), [e](const SweepPoint& p) {
     return std::abs(p.e - e) < 0.5 * kSweepRestitutionStep;
@@ -47,6 +53,25 @@ std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double
     }
   }
   return std::nullopt;
+}
+
+bool crossing_on_step(const std::vector<SweepPoint>& pts, double target) {
+  std::vector<SweepPoint> ok;
+  for (const auto& p : pts)
+    if (usable(p)) ok.push_back(p);
+  std::sort(ok.begin(), ok.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
+  for (std::size_t k = ok.size(); k-- > 1;) {
+    const SweepPoint lo = ok[k - 1], hi = ok[k];
+    if (!((lo.angle - target) * (hi.angle - target) <= 0 && lo.angle != hi.angle)) continue;
+    if (k + 1 >= ok.size()) return false;
+    const SweepPoint up = ok[k + 1];
+    const double rise = hi.angle - lo.angle;
+    const double slope = rise / (hi.e - lo.e);
+    const double slope_above = std::max(0.0, (up.angle - hi.angle) / (up.e - hi.e));
+    const double rise_expected = slope_above * (hi.e - lo.e);
+    return slope > kStepSlopeRatio * slope_above && rise - rise_expected > std::hypot(lo.ci, hi.ci);
+  }
+  return false;
 }
 
 std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts, double target,

@@ -137,3 +137,27 @@ TEST(RestitutionCrossing, TheMeanOfSeedsWeighsTheRunsByTheirIntervals) {
   EXPECT_NEAR(u.angle, 20.0, kTolerance);
   EXPECT_TRUE(std::isnan(pipeline::mean_point(0.97, {{0.97, kNaN, kNaN}}).angle));
 }
+
+TEST(RestitutionCrossing, AStepOfTheAngleIsFlaggedAndAConvexRiseIsNot) {
+  // M9/24.5 swept at 12 flow-through times: 4.2 deg between e = 0.94 and
+  // 0.95, flat above; the gas angle (31.67) is met only at the step's foot.
+  const std::vector<SweepPoint> step = {{0.92, 27.13, 0.16},
+                                        {0.94, 27.88, 0.27},
+                                        {0.95, 32.07, 0.61},
+                                        {0.96, 32.04, 0.33},
+                                        {0.98, 36.22, 0.16}};
+  EXPECT_TRUE(pipeline::crossing_on_step(step, 31.67));
+  // The same runs with intervals wider than the step: noise, not a step.
+  std::vector<SweepPoint> noisy = step;
+  for (auto& p : noisy) p.ci = 4.0;
+  EXPECT_FALSE(pipeline::crossing_on_step(noisy, 31.67));
+  // Near Mach 2 angle(e) climbs steeply towards e = 1, but convex: each
+  // segment steeper than the one below (M2/8: 33.7, 37.1, 43.2 deg at
+  // 0.99, 0.995, 1; gas 37.2; the crossing's bracket is the top one).
+  const std::vector<SweepPoint> convex = {
+      {0.98, 30.9, 0.5}, {0.99, 33.7, 0.6}, {0.995, 37.1, 0.7}, {1.0, 43.2, 0.8}};
+  EXPECT_FALSE(pipeline::crossing_on_step(convex, 37.2));
+  EXPECT_FALSE(pipeline::crossing_on_step(convex, 34.0));  // below the top bracket: convex too
+  // No crossing: nothing to flag.
+  EXPECT_FALSE(pipeline::crossing_on_step(step, 40.0));
+}

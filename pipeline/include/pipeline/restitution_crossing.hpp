@@ -36,6 +36,15 @@ struct Crossing {
 // least dissipative crossing. `pts` sorted by e.
 std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double target);
 
+// Whether find_crossing's bracket is a step of angle(e): where angle(e) is
+// smooth it is convex below e = 1 (each segment of a sweep rises no faster
+// than the one above it), and a bracket that rises several times faster than
+// the segment above it, by more than its two runs' intervals allow, breaks
+// that. On a step the gas angle is met only at its foot, and an e a little
+// lower reads degrees lower (docs/calibration.md "The averaging the crossings
+// are read at"). False where there is no crossing or no usable run above it.
+bool crossing_on_step(const std::vector<SweepPoint>& pts, double target);
+
 // Where a straight line through the usable runs within `window` of
 // find_crossing's e meets `target`: several noisy runs pin a crossing
 // better than the two that bracket it (a blunt body's granular standoff

@@ -56,22 +56,21 @@ std::optional<Crossing> find_crossing(const std::vector<SweepPoint>& pts, double
 }
 
 bool crossing_on_step(const std::vector<SweepPoint>& pts, double target) {
-  std::vector<SweepPoint> ok;
-  for (const auto& p : pts)
-    if (usable(p)) ok.push_back(p);
-  std::sort(ok.begin(), ok.end(), [](const auto& a, const auto& b) { return a.e < b.e; });
-  for (std::size_t k = ok.size(); k-- > 1;) {
-    const SweepPoint lo = ok[k - 1], hi = ok[k];
-    if (!((lo.angle - target) * (hi.angle - target) <= 0 && lo.angle != hi.angle)) continue;
-    if (k + 1 >= ok.size()) return false;
-    const SweepPoint up = ok[k + 1];
-    const double rise = hi.angle - lo.angle;
-    const double slope = rise / (hi.e - lo.e);
-    const double slope_above = std::max(0.0, (up.angle - hi.angle) / (up.e - hi.e));
-    const double rise_expected = slope_above * (hi.e - lo.e);
-    return slope > kStepSlopeRatio * slope_above && rise - rise_expected > std::hypot(lo.ci, hi.ci);
+  const auto c = find_crossing(pts, target);
+  if (!c) return false;
+  std::optional<SweepPoint> lo, hi, above;
+  for (const auto& p : pts) {
+    if (!usable(p)) continue;
+    if (p.e == c->e_low) lo = p;
+    if (p.e == c->e_high) hi = p;
+    if (p.e > c->e_high && (!above || p.e < above->e)) above = p;
   }
-  return false;
+  if (!lo || !hi || !above) return false;
+  const double rise = hi->angle - lo->angle;
+  const double slope = rise / (hi->e - lo->e);
+  const double slope_above = std::max(0.0, (above->angle - hi->angle) / (above->e - hi->e));
+  const double rise_expected = slope_above * (hi->e - lo->e);
+  return slope > kStepSlopeRatio * slope_above && rise - rise_expected > std::hypot(lo->ci, hi->ci);
 }
 
 std::optional<Crossing> find_crossing_by_line(const std::vector<SweepPoint>& pts, double target,

@@ -169,10 +169,11 @@ nlohmann::json calibrate_angle_scatter(const std::vector<std::string>& dirs,
           format_number(range->high) +
           ": the table's error inside it and the extrapolation's beyond it are measured apart");
   const auto measured = scatter_mach_range(table);
-  const auto past_measured = [&](const AngleCheckRun& r) { return side_of(*measured, r.mach); };
-  bool all_past = table.angle_scatter.has_value() && past_measured(runs.front()) != 0;
-  for (const AngleCheckRun& r : runs)
-    all_past = all_past && past_measured(r) == past_measured(runs.front());
+  const int past_first = side_of(*measured, runs.front().mach);
+  const bool all_past = table.angle_scatter.has_value() && past_first != 0 &&
+                        std::all_of(runs.begin(), runs.end(), [&](const AngleCheckRun& r) {
+                          return side_of(*measured, r.mach) == past_first;
+                        });
   const AngleScatter a = angle_scatter_of(runs);
   const bool beyond = side(runs.front()) != 0 || all_past;
   (beyond ? table.angle_scatter_beyond : table.angle_scatter) = a;
